@@ -1,0 +1,13 @@
+#pragma once
+// Umbrella header of the Krug library (numerics; the JSON/file layer is in krug/io/).
+#include "krug/core/error.hpp"
+#include "krug/core/geometry_kind.hpp"
+#include "krug/core/vec2.hpp"
+#include "krug/material/eos.hpp"
+#include "krug/material/material.hpp"
+#include "krug/mesh/generators.hpp"
+#include "krug/mesh/mesh.hpp"
+#include "krug/mesh/quad.hpp"
+#include "krug/solver/controls.hpp"
+#include "krug/solver/ledger.hpp"
+#include "krug/solver/simulation.hpp"

@@ -1,0 +1,28 @@
+#pragma once
+// A material: reference density, equation of state and strength model, chosen per material block
+// (the solver dispatches with std::visit once per block, outside the zone loop).
+#include <string>
+#include <variant>
+
+#include "krug/material/eos.hpp"
+#include "krug/material/strength.hpp"
+
+namespace krug {
+
+using Strength = std::variant<NoStrength, Elastic, PerfectlyPlastic, LinearHardening, JohnsonCook>;
+
+struct Material {
+  std::string name;
+  double reference_density = 0.0;  // rho0 (kg/m^3)
+  Eos eos = IdealGas{};
+  Strength strength = NoStrength{};
+
+  double shear_modulus() const {
+    return std::visit([](const auto& s) { return s.shear_modulus; }, strength);
+  }
+  double shock_slope() const {
+    return std::visit([](const auto& m) { return m.shock_slope(); }, eos);
+  }
+};
+
+}  // namespace krug

@@ -1,0 +1,104 @@
+#pragma once
+// Geometry of one quadrilateral zone with corners 0..3 counter-clockwise in the computational plane
+// (planar (x, y) or axisymmetric (z, r) with r >= 0). Pure functions of the four corner positions.
+//
+// Area A = 1/2 (d02 x d13) with the diagonals d02, d13. Its gradient with respect to corner p is the
+// planar "B matrix" of Wilkins (1964): dA/dx_p = (y_{p+1} - y_{p-1}) / 2, dA/dy_p = (x_{p-1} - x_{p+1}) / 2,
+// and the velocity gradient of the zone is L = (1/A) sum_p u_p (x) dA/dx_p.
+//
+// Axisymmetric volume per radian V = integral of r dA over the quad, by the polygon formula
+// V = 1/6 sum_i (z_i r_{i+1} - z_{i+1} r_i)(r_i + r_{i+1}). Its corner gradient gives the compatible
+// axisymmetric corner forces (Caramana, Burton, Shashkov & Whalen 1998): for a pressure f_p = p dV/dx_p.
+// A degenerate quad with a repeated corner (a triangle at the centre of a polar mesh) is allowed.
+#include <array>
+#include <algorithm>
+#include <cmath>
+
+#include "krug/core/vec2.hpp"
+
+namespace krug::quad {
+
+using Corners = std::array<Vec2, 4>;
+
+constexpr int next(int p) { return (p + 1) & 3; }
+constexpr int prev(int p) { return (p + 3) & 3; }
+
+inline double area(const Corners& c) {
+  return 0.5 * cross(c[2] - c[0], c[3] - c[1]);
+}
+
+// dA/dx_p for every corner.
+inline std::array<Vec2, 4> area_gradient(const Corners& c) {
+  std::array<Vec2, 4> b;
+  for (int p = 0; p < 4; ++p) {
+    const Vec2 n = c[next(p)];
+    const Vec2 m = c[prev(p)];
+    b[p] = {0.5 * (n.y - m.y), 0.5 * (m.x - n.x)};
+  }
+  return b;
+}
+
+// Volume per radian, integral of r dA (r = second coordinate).
+inline double axisymmetric_volume(const Corners& c) {
+  double v = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 a = c[i];
+    const Vec2 b = c[next(i)];
+    v += cross(a, b) * (a.y + b.y);
+  }
+  return v / 6.0;
+}
+
+// dV/dx_p of the axisymmetric volume per radian.
+inline std::array<Vec2, 4> axisymmetric_volume_gradient(const Corners& c) {
+  std::array<Vec2, 4> g;
+  for (int p = 0; p < 4; ++p) {
+    const Vec2 m = c[prev(p)];
+    const Vec2 x = c[p];
+    const Vec2 n = c[next(p)];
+    g[p].x = (n.y * (x.y + n.y) - m.y * (m.y + x.y)) / 6.0;
+    g[p].y = (-n.x * (x.y + n.y) + cross(x, n) + m.x * (m.y + x.y) + cross(m, x)) / 6.0;
+  }
+  return g;
+}
+
+inline Vec2 centre(const Corners& c) { return 0.25 * (c[0] + c[1] + c[2] + c[3]); }
+
+// The corner region of p on the median mesh: p, the midpoint of edge (p, p+1), the centre, the
+// midpoint of edge (p-1, p). The four corner regions tile the zone exactly.
+inline Corners corner_region(const Corners& c, int p) {
+  const Vec2 centre_point = centre(c);
+  return {c[p], 0.5 * (c[p] + c[next(p)]), centre_point, 0.5 * (c[prev(p)] + c[p])};
+}
+
+// Smallest altitude, the length scale of the CFL condition: area over the longest edge
+// (min(h, w) for an h x w rectangle, -> 0 for a sliver).
+inline double smallest_altitude(const Corners& c, double zone_area) {
+  double longest = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    const Vec2 e = c[next(p)] - c[p];
+    longest = std::max(longest, dot(e, e));
+  }
+  return longest > 0.0 ? zone_area / std::sqrt(longest) : 0.0;
+}
+
+// Flanagan & Belytschko (1981) hourglass shape vector gamma = (h - (h.x) b_x / A - (h.y) b_y / A) / 2
+// with h = (1, -1, 1, -1); orthogonal to every linear field and summing to zero, so hourglass forces
+// do no work on linear motions and exert no net force.
+inline std::array<double, 4> hourglass_shape(const Corners& c, const std::array<Vec2, 4>& b,
+                                             double zone_area) {
+  constexpr std::array<double, 4> h{1.0, -1.0, 1.0, -1.0};
+  double hx = 0.0, hy = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    hx += h[p] * c[p].x;
+    hy += h[p] * c[p].y;
+  }
+  std::array<double, 4> gamma;
+  const double inv_area = 1.0 / zone_area;
+  for (int p = 0; p < 4; ++p) {
+    gamma[p] = 0.5 * (h[p] - (hx * b[p].x + hy * b[p].y) * inv_area);
+  }
+  return gamma;
+}
+
+}  // namespace krug::quad

@@ -1,0 +1,44 @@
+#pragma once
+// Numerical controls of a run, with defaults. Units SI.
+#include <limits>
+
+namespace krug {
+
+enum class ViscosityModel {
+  edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
+  scalar,  // Wilkins' zone-centred q added to the pressure
+  off
+};
+
+struct ViscosityParams {
+  ViscosityModel model = ViscosityModel::edge;
+  double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
+  double linear = 0.5;     // c_l, multiplies the sound speed
+  bool limiter = true;     // edge model: switch off for velocity fields linear along the edge
+};
+
+struct HourglassParams {
+  double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
+  double stiffness = 0.0;   // Flanagan-Belytschko stiffness coefficient (x shear modulus)
+};
+
+enum class AxisymmetricForm {
+  control_volume,  // compatible corner forces from dV/dx_p: exact momentum and energy (default)
+  area_weighted    // Wilkins' area-weighted form: better symmetry on polar meshes, not exactly conservative
+};
+
+struct Controls {
+  double end_time = 0.0;                 // s
+  double cfl = 0.5;                      // fraction of the zone's stable step
+  double initial_time_step = 0.0;        // s; 0 = from the CFL condition (1e-6 end_time if that is unbounded)
+  double max_time_step = std::numeric_limits<double>::infinity();  // s
+  double time_step_growth = 1.1;         // largest ratio of one step to the previous
+  double max_volume_change = 0.1;        // largest |dV/V| of a zone per step
+  double time_step_floor = 0.0;          // s; 0 = 1e-9 of the first step. Below it the run stops.
+  long max_cycles = 100'000'000;
+  ViscosityParams viscosity;
+  HourglassParams hourglass;
+  AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
+};
+
+}  // namespace krug

@@ -1,0 +1,47 @@
+#pragma once
+// The conservation ledgers every run keeps (DESIGN.md section 3). Values are per radian
+// (axisymmetric) or per unit thickness (planar); reports multiply by whole_body_factor().
+//
+//   E_total = K + IE + E_converted - W_contact - W_boundary
+//
+// W_contact <= 0 is the work of contact and friction forces on the system, W_boundary the work done
+// on the system by boundary conditions. Plastic, viscous and hourglass work are parts of IE.
+#include <algorithm>
+#include <cmath>
+
+namespace krug {
+
+struct EnergyLedger {
+  double kinetic = 0.0;     // K at t^{n+1/2}: 1/2 sum M |u|^2 over nodes and particles
+  double internal = 0.0;    // IE = sum m e
+  double plastic = 0.0;     // plastic work (part of IE)
+  double viscous = 0.0;     // artificial-viscosity work (part of IE)
+  double hourglass = 0.0;   // hourglass work (part of IE)
+  double contact = 0.0;     // W_contact (<= 0 apart from booked overlap work)
+  double converted = 0.0;   // energy removed with zones converted to particles
+  double boundary = 0.0;    // W_boundary, work done on the system by boundary conditions
+
+  double total() const { return kinetic + internal + converted - contact - boundary; }
+};
+
+struct Ledger {
+  EnergyLedger energy;
+  double initial_total_energy = 0.0;
+  double max_kinetic = 0.0;
+  double initial_mass = 0.0;
+  double mass = 0.0;
+  double initial_axial_momentum = 0.0;
+  double axial_momentum = 0.0;
+  double axial_boundary_impulse = 0.0;  // impulse of boundary conditions on the system, axial
+
+  // |E(t) - E(0)| / max(E(0), max_t K, |W_boundary|): defined also for runs that start at rest.
+  double relative_energy_drift() const {
+    const double scale = std::max({std::abs(initial_total_energy), max_kinetic, std::abs(energy.boundary)});
+    return scale > 0.0 ? std::abs(energy.total() - initial_total_energy) / scale : 0.0;
+  }
+  double relative_mass_error() const {
+    return initial_mass > 0.0 ? std::abs(mass - initial_mass) / initial_mass : 0.0;
+  }
+};
+
+}  // namespace krug

@@ -1,0 +1,112 @@
+#pragma once
+// The simulation: bodies on one Lagrangian mesh, their materials, boundary conditions, controls,
+// the clock and the ledgers. step() is the recipe of DESIGN.md section 2.
+#include <string>
+#include <vector>
+
+#include "krug/core/geometry_kind.hpp"
+#include "krug/material/material.hpp"
+#include "krug/mesh/mesh.hpp"
+#include "krug/solver/controls.hpp"
+#include "krug/solver/ledger.hpp"
+
+namespace krug {
+
+struct Body {
+  std::string name;
+  Index material = 0;
+  Index node_begin = 0, node_end = 0;
+  Index zone_begin = 0, zone_end = 0;
+};
+
+// A node whose velocity components are held at their initial values: zero for symmetry planes,
+// slip planes, the axis and fixed rims; the prescribed value for a moving boundary.
+struct NodeConstraint {
+  Index node = 0;
+  bool fix_x = false;
+  bool fix_y = false;
+};
+
+// Everything a run starts from. Zone density and specific energy and node velocity are set in
+// `mesh`; masses, volumes and pressures are derived by the Simulation.
+struct SimulationSetup {
+  GeometryKind geometry = GeometryKind::planar;
+  Mesh mesh;
+  std::vector<Material> materials;
+  std::vector<Body> bodies;
+  std::vector<NodeConstraint> constraints;
+  Controls controls;
+};
+
+// Per-body summary figures (whole body: x 2 pi in RZ).
+struct BodySummary {
+  double mass = 0.0;
+  Vec2 velocity;   // mass-weighted mean velocity
+  Vec2 centroid;   // mass-weighted node centroid
+  Vec2 bbox_min, bbox_max;
+  Index zones = 0; // active zones
+};
+
+class Simulation {
+ public:
+  explicit Simulation(SimulationSetup setup);
+
+  // One cycle: t^n -> t^{n+1}. Throws NumericalFailure (state left as it was at the failure).
+  void step();
+  bool finished() const;
+
+  GeometryKind geometry() const { return geometry_; }
+  const Mesh& mesh() const { return mesh_; }
+  Mesh& mesh() { return mesh_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  const Controls& controls() const { return controls_; }
+  Controls& controls() { return controls_; }
+  const Ledger& ledger() const { return ledger_; }
+
+  double time() const { return time_; }
+  long cycle() const { return cycle_; }
+  long zone_cycles() const { return zone_cycles_; }
+  double next_time_step() const { return time_step_next_; }
+  double last_time_step() const { return time_step_previous_; }
+  Index controlling_zone() const { return controlling_zone_; }
+
+  // For tests of the time integration: cap the next step (the CFL and growth limits still apply).
+  void cap_next_time_step(double dt);
+
+  BodySummary summarise(const Body& body) const;
+  double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
+
+ private:
+  // The recipe, in order.
+  void compute_forces();          // 1. F^n: corner forces of every zone
+  void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
+  void solve_contact_reactions(); // 3. R from predicted gaps (no contact pairs yet)
+  void correct_and_move();        // 4. u^{n+1/2} = u* + dt^n R / M, x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
+  void update_zones();            // 5. geometry, density, energy, EOS, stable step
+  void choose_time_step();        // 8. dt^{n+3/2}
+
+  void initialise();
+  void measure_ledger();
+  [[noreturn]] void fail(const std::string& what, Index zone) const;
+
+  GeometryKind geometry_;
+  Mesh mesh_;
+  std::vector<Material> materials_;
+  std::vector<Body> bodies_;
+  std::vector<NodeConstraint> constraints_;
+  Controls controls_;
+  Ledger ledger_;
+  std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p (area-weighted RZ form only)
+
+  double time_ = 0.0;
+  long cycle_ = 0;
+  long zone_cycles_ = 0;
+  double time_step_previous_ = 0.0;  // dt^{n-1/2}
+  double time_step_next_ = 0.0;      // dt^{n+1/2}
+  double time_step_floor_ = 0.0;
+  double stable_time_step_ = 0.0;    // from the last zone update
+  Index controlling_zone_ = -1;
+};
+
+}  // namespace krug

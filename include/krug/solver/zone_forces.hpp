@@ -1,0 +1,200 @@
+#pragma once
+// Step 1 of the time step: corner forces F^n of each zone on its four nodes (DESIGN.md section 2).
+//
+// Stress: the corner forces are the exact adjoint of the zone's discrete strain rate,
+// sum_p f_p . u_p = -V sigma : D for every velocity field, so that the internal-energy update
+// m de = -dt sum_p f_p . ubar_p is both compatible (total energy to round-off) and thermodynamic.
+//   planar:          f_p = -sigma b_p,                         b_p = dA/dx_p
+//   axisymmetric CV: f_p = -[(V/A)(sigma_2D - sigma_tt I) b_p + sigma_tt c_p],   c_p = dV/dx_p
+// where the hoop rate D_tt = dV/dt / V - dA/dt / A never divides by r. For a pressure f_p = p c_p.
+// Axial forces of a zone sum to zero exactly (sum b_p = 0, sum c_p.z = 0).
+//   axisymmetric area-weighted (Wilkins 1964): f_p = s_p [-sigma b_p + (A/4)(sigma_rr - sigma_tt)/rbar e_r],
+//   s_p = M_p / M^A_p converting the area-weighted acceleration to a force on the nodal mass.
+//
+// Artificial viscosity, edge form (Caramana, Shashkov & Whalen 1998): on each compressing edge
+// (du . dx < 0) the damper force kappa du acts between its nodes,
+//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| (x r_S in RZ),
+// S the median-mesh segment from the zone centre to the edge midpoint; psi the limiter built from the
+// velocity gradients of the continuing edges (psi = 1 for a velocity field linear along the edge), so
+// the viscosity stays off in uniform compression. The damper only dissipates: power = -kappa |du|^2.
+//
+// Hourglass (Flanagan & Belytschko 1981): f_p = -(Q_visc + Q_stiff) gamma_p with
+// Q_visc = k_v rho c sqrt(A) q, dQ_stiff = k_s mu dt (b.b/A) q, q = sum_p gamma_p u_p.
+#include <algorithm>
+#include <cmath>
+
+#include "krug/core/geometry_kind.hpp"
+#include "krug/mesh/mesh.hpp"
+#include "krug/solver/controls.hpp"
+
+namespace krug {
+
+struct ZoneForceParams {
+  double shock_slope = 0.5;            // of the body's EOS
+  double shear_modulus = 0.0;          // Pa, for stiffness hourglass
+  ViscosityParams viscosity;
+  HourglassParams hourglass;
+  AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
+  double previous_time_step = 0.0;     // dt^{n-1/2}, increment of the stiffness hourglass state
+};
+
+// Rates of artificial work at the velocities the forces were built from (for the ledger's split of IE).
+struct ArtificialPower {
+  double viscous = 0.0;
+  double hourglass = 0.0;
+};
+
+namespace detail {
+
+// Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
+// gradient along the edge itself, psi = max(0, min(1, (r_b + r_a)/2, 2 r_b, 2 r_a)).
+inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index b, Index after,
+                           Vec2 gradient) {
+  const double g2 = dot(gradient, gradient);
+  if (g2 <= 0.0) return 0.0;
+  auto ratio = [&](Index from, Index to) {
+    const Vec2 dx = nodes.position(to) - nodes.position(from);
+    const double length = norm(dx);
+    if (length <= 0.0) return 0.0;
+    const Vec2 du = nodes.velocity(to) - nodes.velocity(from);
+    return dot(du, gradient) / (length * g2);
+  };
+  const bool has_before = before >= 0, has_after = after >= 0;
+  if (!has_before && !has_after) return 0.0;
+  double r_before = has_before ? ratio(before, a) : 0.0;
+  double r_after = has_after ? ratio(b, after) : 0.0;
+  if (!has_before) r_before = r_after;
+  if (!has_after) r_after = r_before;
+  return std::clamp(std::min({0.5 * (r_before + r_after), 2.0 * r_before, 2.0 * r_after}), 0.0, 1.0);
+}
+
+}  // namespace detail
+
+// Adds the corner forces of the active zones in [zone_begin, zone_end) to nodes.force_{x,y}, stores
+// them in zones.corner_force and the viscous signal speed in zones.viscous_speed. Velocities are
+// read from nodes.u/v (t^{n-1/2}). `node_scale` is s_p for the area-weighted form (else unused).
+template <GeometryKind G, ViscosityModel Visc>
+ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_end,
+                                       const ZoneForceParams& params, const double* node_scale) {
+  constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
+  const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
+  const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
+  const double cq_s = params.viscosity.quadratic * params.shock_slope;
+  const double cl = params.viscosity.linear;
+  NodeFields& nodes = mesh.nodes;
+  ZoneFields& zones = mesh.zones;
+  ArtificialPower power;
+
+  for (Index z = zone_begin; z < zone_end; ++z) {
+    if (!zones.active[z]) continue;
+    const ZoneCorners& n = zones.corners[z];
+    const quad::Corners x = mesh.corner_positions(z);
+    const std::array<Vec2, 4> u{nodes.velocity(n[0]), nodes.velocity(n[1]), nodes.velocity(n[2]),
+                                nodes.velocity(n[3])};
+    const double area = quad::area(x);
+    const std::array<Vec2, 4> b = quad::area_gradient(x);
+    const double rho = zones.density[z];
+    const double c = zones.sound_speed[z];
+
+    // Cauchy stress without artificial viscosity: sigma = s - p I.
+    double pressure = zones.pressure[z];
+    double volume = area;
+    std::array<Vec2, 4> volume_gradient{};
+    if constexpr (axisymmetric) {
+      volume = quad::axisymmetric_volume(x);
+      volume_gradient = quad::axisymmetric_volume_gradient(x);
+    }
+    if constexpr (Visc == ViscosityModel::scalar) {
+      // Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only.
+      double volume_rate = 0.0;
+      for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], axisymmetric ? volume_gradient[p] : b[p]);
+      const double divergence = volume_rate / volume;
+      if (divergence < 0.0) {
+        const double length = quad::smallest_altitude(x, area);
+        const double speed = cq_s * length * -divergence;
+        pressure += rho * length * -divergence * (cq_s * length * -divergence + cl * c);
+        zones.viscous_speed[z] = 2.0 * speed;
+      } else {
+        zones.viscous_speed[z] = 0.0;
+      }
+    }
+    const double sxx = zones.deviator_xx[z] - pressure;
+    const double syy = zones.deviator_yy[z] - pressure;
+    const double sxy = zones.deviator_xy[z];
+    const double stt = zones.deviator_zz[z] - pressure;
+
+    std::array<Vec2, 4> f;
+    const double mean_radius = axisymmetric ? volume / area : 1.0;
+    for (int p = 0; p < 4; ++p) {
+      if constexpr (axisymmetric) {
+        if (area_weighted) {
+          f[p] = {-(sxx * b[p].x + sxy * b[p].y),
+                  -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius};
+        } else {
+          f[p] = {-(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x),
+                  -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y)};
+        }
+      } else {
+        f[p] = {-(sxx * b[p].x + sxy * b[p].y), -(sxy * b[p].x + syy * b[p].y)};
+      }
+    }
+
+    if constexpr (Visc == ViscosityModel::edge) {
+      const Vec2 centre = quad::centre(x);
+      double viscous_speed = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const int k1 = quad::next(k);
+        if (n[k] == n[k1]) continue;
+        const Vec2 du = u[k1] - u[k];
+        const Vec2 dx = x[k1] - x[k];
+        if (dot(du, dx) >= 0.0) continue;  // expanding or shearing edge: no viscosity
+        const double du_norm = norm(du);
+        const double psi = params.viscosity.limiter
+                               ? detail::edge_limiter(nodes, zones.edge_before[z][k], n[k], n[k1],
+                                                      zones.edge_after[z][k], (1.0 / norm(dx)) * du)
+                               : 0.0;
+        const double active = 1.0 - psi;
+        if (active <= 0.0) continue;
+        const Vec2 midpoint = 0.5 * (x[k] + x[k1]);
+        double face = norm(midpoint - centre);
+        if (axisymmetric && !area_weighted) face *= 0.5 * (midpoint.y + centre.y);
+        const double quadratic = cq_s * du_norm;
+        const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
+        const double kappa = q_over_du * face;  // force per unit velocity difference
+        f[k] += kappa * du;
+        f[k1] -= kappa * du;
+        power.viscous += kappa * dot(du, du);
+        viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+      }
+      zones.viscous_speed[z] = viscous_speed;
+    }
+
+    if (hourglass_on) {
+      const std::array<double, 4> gamma = quad::hourglass_shape(x, b, area);
+      Vec2 rate{};
+      for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
+      double bb = 0.0;
+      for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
+      zones.hourglass_x[z] += params.hourglass.stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.x;
+      zones.hourglass_y[z] += params.hourglass.stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.y;
+      const double viscous = params.hourglass.viscous * rho * c * std::sqrt(area);
+      const double scale = axisymmetric && !area_weighted ? mean_radius : 1.0;
+      const Vec2 generalised{scale * (viscous * rate.x + zones.hourglass_x[z]),
+                             scale * (viscous * rate.y + zones.hourglass_y[z])};
+      for (int p = 0; p < 4; ++p) f[p] -= gamma[p] * generalised;
+      power.hourglass += dot(generalised, rate);
+    }
+
+    double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+    for (int p = 0; p < 4; ++p) {
+      if (area_weighted) f[p] *= node_scale[n[p]];
+      corner[2 * p] = f[p].x;
+      corner[2 * p + 1] = f[p].y;
+      nodes.force_x[n[p]] += f[p].x;
+      nodes.force_y[n[p]] += f[p].y;
+    }
+  }
+  return power;
+}
+
+}  // namespace krug

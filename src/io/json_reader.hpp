@@ -1,0 +1,86 @@
+#pragma once
+// Strict reading of a JSON scenario (private to the io library). Every accessor names the JSON path
+// of what it reads; a wrong type, a value out of range, a missing key or an unknown key is an
+// InputError that says where, what was found and what was expected (an unknown key suggests the
+// nearest valid one, an unknown model name lists the valid ones). What is read, defaults included,
+// is copied into a "resolved" document so a run can be reproduced from its output directory.
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace krug::io {
+
+using Json = nlohmann::json;
+
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true}; }
+  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false}; }
+  static Range between(double lo, double hi) { return {lo, hi, false}; }
+  std::string describe() const;
+  bool contains(double v) const;
+};
+
+// Edit distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+// The candidate nearest to `word`, if it is close enough to be a likely typo.
+std::optional<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates);
+// A short rendering of a JSON value for error messages.
+std::string describe_value(const Json& value);
+
+class JsonObject {
+ public:
+  // `value` must outlive the reader; `resolved` receives what is read (may be null).
+  JsonObject(const Json& value, std::string path, Json* resolved);
+
+  const std::string& path() const { return path_; }
+  std::string path_of(std::string_view key) const;
+  bool has(std::string_view key) const;
+
+  double number(std::string_view key, Range range = {});
+  double number(std::string_view key, double fallback, Range range = {});
+  long integer(std::string_view key, long fallback, long min, long max);
+  long integer(std::string_view key, long min, long max);
+  bool flag(std::string_view key, bool fallback);
+  std::string text(std::string_view key);
+  std::string text(std::string_view key, std::string_view fallback);
+  // A name out of a fixed list: an unknown one lists the valid names.
+  std::string choice(std::string_view key, const std::vector<std::string>& options);
+  std::string choice(std::string_view key, const std::vector<std::string>& options, std::string_view fallback);
+
+  JsonObject object(std::string_view key);
+  std::optional<JsonObject> optional_object(std::string_view key);
+  // The object at key, or an empty one when absent (so its defaults still reach the resolved document).
+  JsonObject object_or_empty(std::string_view key);
+  // The raw value (for fields that are a number or an expression string, or arrays).
+  const Json& raw(std::string_view key);
+  const Json* optional_raw(std::string_view key);
+  // Copies a raw value into the resolved document under `key`.
+  void resolve(std::string_view key, const Json& value);
+
+  // Names of the object's members, in document order.
+  std::vector<std::string> keys() const;
+  // Every key not read is an error (with the nearest read or known key as a suggestion).
+  void finish(const std::vector<std::string>& also_known = {}) const;
+
+  [[noreturn]] void fail(std::string_view key, std::string_view expected) const;
+  [[noreturn]] void fail_here(std::string_view message) const;
+
+ private:
+  const Json& member(std::string_view key) const;
+
+  const Json& value_;
+  std::string path_;
+  Json* resolved_;
+  mutable std::set<std::string, std::less<>> used_;
+};
+
+}  // namespace krug::io

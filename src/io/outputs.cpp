@@ -1,0 +1,154 @@
+#include "krug/io/outputs.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "krug/core/error.hpp"
+
+namespace krug::io {
+
+using Json = nlohmann::ordered_json;  // keeps the contract's field order
+
+void write_text_atomically(const std::filesystem::path& file, const std::string& text) {
+  const std::filesystem::path temporary = file.string() + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
+    out << text;
+    out.flush();
+    if (!out) throw InputError(fmt::format("{}: write failed (disk full?)", temporary.string()));
+  }
+  std::filesystem::rename(temporary, file);
+}
+
+namespace {
+
+Json pair(Vec2 v) { return Json::array({v.x, v.y}); }
+
+// JSON has no NaN or infinity: such a value is written as null (and the run has failed anyway).
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+}  // namespace
+
+std::string summary_json(const Simulation& simulation, const RunResult& result) {
+  const double whole = simulation.whole_body_factor();
+  const Ledger& ledger = simulation.ledger();
+  const EnergyLedger& e = ledger.energy;
+  const GeometryKind g = simulation.geometry();
+  Json s;
+  s["status"] = result.status == RunStatus::completed ? "completed" : "failed";
+  s["message"] = result.message;
+  s["geometry"] = g == GeometryKind::axisymmetric ? "axisymmetric" : "planar";
+  s["axes"] = Json::array({std::string(axis_name(g, 0)), std::string(axis_name(g, 1))});
+  s["units"] = "SI (m, kg, s, Pa, J); masses, momenta and energies for whole bodies";
+  s["time"] = simulation.time();
+  s["cycles"] = simulation.cycle();
+  s["zone_cycles"] = simulation.zone_cycles();
+  s["wall_seconds"] = result.wall_seconds;
+  s["ledger"]["mass"] = {{"initial", whole * ledger.initial_mass},
+                         {"final", whole * ledger.mass},
+                         {"relative_error", number(ledger.relative_mass_error())}};
+  s["ledger"]["axial_momentum"] = {{"initial", number(whole * ledger.initial_axial_momentum)},
+                                   {"final", number(whole * ledger.axial_momentum)},
+                                   {"boundary_impulse", number(whole * ledger.axial_boundary_impulse)}};
+  s["ledger"]["energy"] = {{"kinetic", number(whole * e.kinetic)},
+                           {"internal", number(whole * e.internal)},
+                           {"plastic", number(whole * e.plastic)},
+                           {"viscous", number(whole * e.viscous)},
+                           {"hourglass", number(whole * e.hourglass)},
+                           {"contact", number(whole * e.contact)},
+                           {"converted", number(whole * e.converted)},
+                           {"boundary", number(whole * e.boundary)},
+                           {"total", number(whole * e.total())},
+                           {"initial_total", number(whole * ledger.initial_total_energy)},
+                           {"relative_drift", number(ledger.relative_energy_drift())}};
+  Json bodies = Json::object();
+  for (const Body& body : simulation.bodies()) {
+    const BodySummary b = simulation.summarise(body);
+    bodies[body.name] = {{"mass", b.mass},
+                         {"velocity", pair(b.velocity)},
+                         {"centroid", pair(b.centroid)},
+                         {"bbox", {{"min", pair(b.bbox_min)}, {"max", pair(b.bbox_max)}}},
+                         {"zones", b.zones}};
+  }
+  s["bodies"] = bodies;
+  s["particles"] = {{"count", 0}, {"mass", 0.0}, {"momentum", Json::array({0.0, 0.0})}};
+  return s.dump(2) + "\n";
+}
+
+RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory)
+    : directory_(std::move(directory)), settings_(scenario.output) {
+  std::error_code error;
+  std::filesystem::create_directories(directory_ / "snapshots", error);
+  if (error) throw InputError(fmt::format("{}: cannot create the output directory: {}", directory_.string(), error.message()));
+  write_text_atomically(directory_ / "scenario.resolved.json", scenario.resolved_json + "\n");
+  history_.open(directory_ / "history.csv", std::ios::trunc);
+  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+  const GeometryKind g = simulation.geometry();
+  const std::string a0(axis_name(g, 0)), a1(axis_name(g, 1));
+  history_ << "time,cycle,dt";
+  for (const Body& body : simulation.bodies()) {
+    history_ << fmt::format(",{0}_v{1},{0}_v{2},{0}_{1},{0}_{2}", body.name, a0, a1);
+  }
+  history_ << ",kinetic,internal,plastic,viscous,hourglass,contact,converted,boundary,total,relative_drift,particles\n";
+  write_history_row(simulation);
+  write_snapshot(simulation);
+  next_history_time_ = settings_.history_interval;
+  next_snapshot_time_ = settings_.snapshot_interval > 0.0 ? settings_.snapshot_interval
+                                                          : std::numeric_limits<double>::infinity();
+}
+
+RunRecorder::~RunRecorder() = default;
+
+void RunRecorder::write_history_row(const Simulation& simulation) {
+  const double whole = simulation.whole_body_factor();
+  const EnergyLedger& e = simulation.ledger().energy;
+  history_ << fmt::format("{:.9e},{},{:.6e}", simulation.time(), simulation.cycle(), simulation.last_time_step());
+  for (const Body& body : simulation.bodies()) {
+    const BodySummary b = simulation.summarise(body);
+    history_ << fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e}", b.velocity.x, b.velocity.y, b.centroid.x, b.centroid.y);
+  }
+  history_ << fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
+                          whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
+                          whole * e.hourglass, whole * e.contact, whole * e.converted, whole * e.boundary,
+                          whole * e.total(), simulation.ledger().relative_energy_drift(), 0);
+}
+
+void RunRecorder::write_snapshot(const Simulation& simulation) {
+  const std::string name = fmt::format("snapshots/state_{:05d}.vtu", snapshots_.size());
+  write_vtu(simulation, directory_ / name);
+  snapshots_.emplace_back(simulation.time(), name);
+}
+
+void RunRecorder::observe(const Simulation& simulation) {
+  if (simulation.time() >= next_history_time_ * (1.0 - 1e-12)) {
+    write_history_row(simulation);
+    while (next_history_time_ <= simulation.time()) {
+      next_history_time_ += settings_.history_interval > 0.0 ? settings_.history_interval : simulation.time();
+      if (settings_.history_interval <= 0.0) break;
+    }
+  }
+  if (simulation.time() >= next_snapshot_time_ * (1.0 - 1e-12) && !simulation.finished()) {
+    write_snapshot(simulation);
+    while (next_snapshot_time_ <= simulation.time() * (1.0 + 1e-12)) next_snapshot_time_ += settings_.snapshot_interval;
+  }
+}
+
+void RunRecorder::finish(const Simulation& simulation, const RunResult& result) {
+  if (snapshots_.empty() || snapshots_.back().first < simulation.time()) write_snapshot(simulation);
+  write_history_row(simulation);
+  history_.flush();
+  write_vtu(simulation, directory_ / "final.vtu");
+  std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+  for (const auto& [time, file] : snapshots_) {
+    pvd += fmt::format("    <DataSet timestep=\"{:.9e}\" part=\"0\" file=\"{}\"/>\n", time, file);
+  }
+  pvd += "  </Collection>\n</VTKFile>\n";
+  write_text_atomically(directory_ / "run.pvd", pvd);
+  write_text_atomically(directory_ / "summary.json", summary_json(simulation, result));
+}
+
+}  // namespace krug::io

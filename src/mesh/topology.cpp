@@ -1,0 +1,114 @@
+// Connectivity-derived mesh data: field sizes, edge continuations for the viscosity limiter and
+// boundary segments. Edges are matched by sorting (deterministic, independent of hashing).
+#include <algorithm>
+#include <tuple>
+
+#include "krug/mesh/mesh.hpp"
+
+namespace krug {
+
+void NodeFields::resize(Index n) {
+  for (auto* f : {&x, &y, &u, &v, &u_old, &v_old, &force_x, &force_y, &mass, &inv_mass_x, &inv_mass_y}) {
+    f->resize(n, 0.0);
+  }
+  body.resize(n, -1);
+}
+
+void ZoneFields::resize(Index n) {
+  corners.resize(n, ZoneCorners{-1, -1, -1, -1});
+  body.resize(n, -1);
+  active.resize(n, 1);
+  for (auto* f : {&mass, &density, &specific_energy, &pressure, &sound_speed, &volume, &area,
+                  &viscous_speed, &volume_change, &deviator_xx, &deviator_yy, &deviator_xy,
+                  &deviator_zz, &plastic_strain, &hourglass_x, &hourglass_y}) {
+    f->resize(n, 0.0);
+  }
+  corner_force.resize(8 * static_cast<std::size_t>(n), 0.0);
+  edge_before.resize(n, ZoneCorners{-1, -1, -1, -1});
+  edge_after.resize(n, ZoneCorners{-1, -1, -1, -1});
+}
+
+namespace {
+
+struct EdgeRecord {
+  Index low, high;  // node indices, low < high
+  Index zone;
+  int local;        // edge (corner local, corner local+1)
+  bool operator<(const EdgeRecord& o) const {
+    return std::tie(low, high, zone, local) < std::tie(o.low, o.high, o.zone, o.local);
+  }
+};
+
+std::vector<EdgeRecord> sorted_edges(const Mesh& mesh, Index zone_begin, Index zone_end) {
+  std::vector<EdgeRecord> edges;
+  edges.reserve(4 * static_cast<std::size_t>(zone_end - zone_begin));
+  for (Index z = zone_begin; z < zone_end; ++z) {
+    if (!mesh.zones.active[z]) continue;
+    const ZoneCorners& c = mesh.zones.corners[z];
+    for (int k = 0; k < 4; ++k) {
+      const Index a = c[k], b = c[quad::next(k)];
+      if (a == b) continue;  // degenerate edge of a triangle-like zone
+      edges.push_back({std::min(a, b), std::max(a, b), z, k});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+// In zone w, the neighbour of node n other than `exclude` (-1 if none).
+Index other_neighbour(const ZoneCorners& w, Index n, Index exclude) {
+  for (int j = 0; j < 4; ++j) {
+    if (w[j] != n) continue;
+    const Index before = w[quad::prev(j)], after = w[quad::next(j)];
+    if (before != exclude && before != n) return before;
+    if (after != exclude && after != n) return after;
+  }
+  return -1;
+}
+
+}  // namespace
+
+void build_edge_continuations(Mesh& mesh) {
+  const Index n = mesh.zones.size();
+  const auto edges = sorted_edges(mesh, 0, n);
+  // neighbour[4 z + k]: the zone across local edge k of zone z, or -1.
+  std::vector<Index> neighbour(4 * static_cast<std::size_t>(n), -1);
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const EdgeRecord& e = edges[i];
+    const EdgeRecord& f = edges[i + 1];
+    if (e.low == f.low && e.high == f.high) {
+      neighbour[4 * e.zone + e.local] = f.zone;
+      neighbour[4 * f.zone + f.local] = e.zone;
+    }
+  }
+  for (Index z = 0; z < n; ++z) {
+    const ZoneCorners& c = mesh.zones.corners[z];
+    for (int k = 0; k < 4; ++k) {
+      const Index a = c[k], b = c[quad::next(k)];
+      const Index across_before = neighbour[4 * z + quad::prev(k)];
+      const Index across_after = neighbour[4 * z + quad::next(k)];
+      mesh.zones.edge_before[z][k] =
+          across_before < 0 ? -1 : other_neighbour(mesh.zones.corners[across_before], a, c[quad::prev(k)]);
+      mesh.zones.edge_after[z][k] =
+          across_after < 0 ? -1 : other_neighbour(mesh.zones.corners[across_after], b, c[quad::next(quad::next(k))]);
+    }
+  }
+}
+
+std::vector<BoundarySegment> boundary_segments(const Mesh& mesh, Index zone_begin, Index zone_end) {
+  const auto edges = sorted_edges(mesh, zone_begin, zone_end);
+  std::vector<BoundarySegment> segments;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const bool shared_before = i > 0 && edges[i - 1].low == edges[i].low && edges[i - 1].high == edges[i].high;
+    const bool shared_after =
+        i + 1 < edges.size() && edges[i + 1].low == edges[i].low && edges[i + 1].high == edges[i].high;
+    if (shared_before || shared_after) continue;
+    const ZoneCorners& c = mesh.zones.corners[edges[i].zone];
+    segments.push_back({c[edges[i].local], c[quad::next(edges[i].local)], edges[i].zone});
+  }
+  std::sort(segments.begin(), segments.end(),
+            [](const BoundarySegment& s, const BoundarySegment& t) { return std::tie(s.zone, s.a) < std::tie(t.zone, t.a); });
+  return segments;
+}
+
+}  // namespace krug

@@ -1,0 +1,306 @@
+#include "krug/solver/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "krug/core/error.hpp"
+#include "krug/solver/zone_forces.hpp"
+#include "krug/solver/zone_update.hpp"
+
+namespace krug {
+
+namespace {
+
+// Picks the compile-time variant of the force kernel once per body.
+ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, Mesh& mesh, const Body& body,
+                                     const ZoneForceParams& params, const double* scale) {
+  auto run = [&]<GeometryKind G>() {
+    switch (model) {
+      case ViscosityModel::edge:
+        return accumulate_zone_forces<G, ViscosityModel::edge>(mesh, body.zone_begin, body.zone_end, params, scale);
+      case ViscosityModel::scalar:
+        return accumulate_zone_forces<G, ViscosityModel::scalar>(mesh, body.zone_begin, body.zone_end, params, scale);
+      case ViscosityModel::off:
+        break;
+    }
+    return accumulate_zone_forces<G, ViscosityModel::off>(mesh, body.zone_begin, body.zone_end, params, scale);
+  };
+  return geometry == GeometryKind::axisymmetric ? run.template operator()<GeometryKind::axisymmetric>()
+                                                : run.template operator()<GeometryKind::planar>();
+}
+
+}  // namespace
+
+Simulation::Simulation(SimulationSetup setup)
+    : geometry_(setup.geometry),
+      mesh_(std::move(setup.mesh)),
+      materials_(std::move(setup.materials)),
+      bodies_(std::move(setup.bodies)),
+      constraints_(std::move(setup.constraints)),
+      controls_(setup.controls) {
+  initialise();
+}
+
+void Simulation::initialise() {
+  const bool axisymmetric = geometry_ == GeometryKind::axisymmetric;
+  NodeFields& nodes = mesh_.nodes;
+  ZoneFields& zones = mesh_.zones;
+  if (!(controls_.end_time > 0.0)) throw InputError("end_time must be positive");
+
+  // Zone geometry and mass; nodal mass from the r-weighted corner volumes of the median mesh.
+  std::vector<double> area_mass(static_cast<std::size_t>(nodes.size()), 0.0);
+  std::fill(nodes.mass.begin(), nodes.mass.end(), 0.0);
+  for (const Body& body : bodies_) {
+    const Material& material = materials_.at(static_cast<std::size_t>(body.material));
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      const quad::Corners x = mesh_.corner_positions(z);
+      const double area = quad::area(x);
+      const double volume = axisymmetric ? quad::axisymmetric_volume(x) : area;
+      if (!(area > 0.0) || !(volume > 0.0)) {
+        throw InputError(fmt::format("body '{}': zone {} has non-positive area {:.3e} m^2 (inverted corners "
+                                     "or a node below the axis)", body.name, z - body.zone_begin, area));
+      }
+      if (zones.density[z] <= 0.0) zones.density[z] = material.reference_density;
+      zones.area[z] = area;
+      zones.volume[z] = volume;
+      zones.mass[z] = zones.density[z] * volume;
+      const ZoneCorners& n = zones.corners[z];
+      for (int p = 0; p < 4; ++p) {
+        const quad::Corners region = quad::corner_region(x, p);
+        const double corner_volume = axisymmetric ? quad::axisymmetric_volume(region) : quad::area(region);
+        nodes.mass[n[p]] += zones.density[z] * corner_volume;
+        area_mass[static_cast<std::size_t>(n[p])] += zones.density[z] * 0.25 * area;
+      }
+    }
+  }
+  if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
+    area_weighted_scale_.resize(area_mass.size());
+    for (std::size_t p = 0; p < area_mass.size(); ++p) {
+      area_weighted_scale_[p] = area_mass[p] > 0.0 ? nodes.mass[static_cast<Index>(p)] / area_mass[p] : 0.0;
+    }
+  }
+
+  // Per-DOF inverse masses; the axis holds u_r = 0 in axisymmetric geometry.
+  for (Index p = 0; p < nodes.size(); ++p) {
+    const double inverse = nodes.mass[p] > 0.0 ? 1.0 / nodes.mass[p] : 0.0;
+    nodes.inv_mass_x[p] = inverse;
+    nodes.inv_mass_y[p] = inverse;
+    if (axisymmetric && nodes.y[p] == 0.0) {
+      nodes.v[p] = 0.0;
+      constraints_.push_back({p, false, true});
+    }
+  }
+  for (const NodeConstraint& c : constraints_) {
+    if (c.fix_x) nodes.inv_mass_x[c.node] = 0.0;
+    if (c.fix_y) nodes.inv_mass_y[c.node] = 0.0;
+  }
+
+  // Pressure and wave speed from the EOS at the initial state.
+  for (const Body& body : bodies_) {
+    const Material& material = materials_.at(static_cast<std::size_t>(body.material));
+    const double mu = material.shear_modulus();
+    std::visit([&](const auto& eos) {
+      for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+        const double rho = zones.density[z], e = zones.specific_energy[z];
+        zones.pressure[z] = eos.pressure(rho, e);
+        zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]) +
+                                                  4.0 * mu / (3.0 * rho), 0.0));
+      }
+    }, material.eos);
+  }
+  build_edge_continuations(mesh_);
+
+  // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
+  double stable = std::numeric_limits<double>::infinity();
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (!zones.active[z] || zones.sound_speed[z] <= 0.0) continue;
+    const double dt = controls_.cfl * quad::smallest_altitude(mesh_.corner_positions(z), zones.area[z]) / zones.sound_speed[z];
+    if (dt < stable) { stable = dt; controlling_zone_ = z; }
+  }
+  double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable;
+  if (!std::isfinite(first)) first = 1e-6 * controls_.end_time;
+  first = std::min({first, stable, controls_.max_time_step, controls_.end_time});
+  time_step_previous_ = 0.0;
+  time_step_next_ = first;
+  time_step_floor_ = controls_.time_step_floor > 0.0 ? controls_.time_step_floor : 1e-9 * first;
+
+  measure_ledger();
+  ledger_.energy.internal = 0.0;
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (zones.active[z]) ledger_.energy.internal += zones.mass[z] * zones.specific_energy[z];
+  }
+  ledger_.initial_total_energy = ledger_.energy.total();
+  ledger_.initial_mass = ledger_.mass;
+  ledger_.initial_axial_momentum = ledger_.axial_momentum;
+}
+
+void Simulation::step() {
+  compute_forces();
+  predict_velocities();
+  solve_contact_reactions();
+  correct_and_move();
+  update_zones();
+  choose_time_step();
+}
+
+bool Simulation::finished() const {
+  return time_ >= controls_.end_time * (1.0 - 1e-12) || cycle_ >= controls_.max_cycles;
+}
+
+void Simulation::cap_next_time_step(double dt) {
+  time_step_next_ = std::min(time_step_next_, dt);
+}
+
+void Simulation::compute_forces() {
+  std::fill(mesh_.nodes.force_x.begin(), mesh_.nodes.force_x.end(), 0.0);
+  std::fill(mesh_.nodes.force_y.begin(), mesh_.nodes.force_y.end(), 0.0);
+  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  for (const Body& body : bodies_) {
+    const Material& material = materials_[static_cast<std::size_t>(body.material)];
+    ZoneForceParams params;
+    params.shock_slope = material.shock_slope();
+    params.shear_modulus = material.shear_modulus();
+    params.viscosity = controls_.viscosity;
+    params.hourglass = controls_.hourglass;
+    params.axisymmetric_form = controls_.axisymmetric_form;
+    params.previous_time_step = time_step_previous_;
+    const ArtificialPower power = dispatch_zone_forces(geometry_, controls_.viscosity.model, mesh_, body, params,
+                                                       area_weighted_scale_.data());
+    ledger_.energy.viscous += dt_mid * power.viscous;
+    ledger_.energy.hourglass += dt_mid * power.hourglass;
+  }
+}
+
+void Simulation::predict_velocities() {
+  NodeFields& nodes = mesh_.nodes;
+  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  nodes.u_old = nodes.u;
+  nodes.v_old = nodes.v;
+  for (Index p = 0; p < nodes.size(); ++p) {
+    nodes.u[p] += dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
+    nodes.v[p] += dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
+  }
+  // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
+  for (const NodeConstraint& c : constraints_) {
+    if (c.fix_x) {
+      ledger_.energy.boundary -= dt_mid * nodes.force_x[c.node] * nodes.u[c.node];
+      ledger_.axial_boundary_impulse -= dt_mid * nodes.force_x[c.node];
+    }
+    if (c.fix_y) ledger_.energy.boundary -= dt_mid * nodes.force_y[c.node] * nodes.v[c.node];
+  }
+}
+
+void Simulation::solve_contact_reactions() {
+  // No contact pairs in this scene: R = 0.
+}
+
+void Simulation::correct_and_move() {
+  NodeFields& nodes = mesh_.nodes;
+  const double dt = time_step_next_;
+  for (Index p = 0; p < nodes.size(); ++p) {
+    nodes.x[p] += dt * nodes.u[p];
+    nodes.y[p] += dt * nodes.v[p];
+  }
+}
+
+void Simulation::update_zones() {
+  ZoneUpdateParams params;
+  params.time_step_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  params.time_step_next = time_step_next_;
+  params.cfl = controls_.cfl;
+  params.max_volume_change = controls_.max_volume_change;
+  stable_time_step_ = std::numeric_limits<double>::infinity();
+  double internal = 0.0;
+  for (const Body& body : bodies_) {
+    const Material& material = materials_[static_cast<std::size_t>(body.material)];
+    params.shear_modulus = material.shear_modulus();
+    const ZoneUpdateResult result = std::visit([&](const auto& eos) {
+      return geometry_ == GeometryKind::axisymmetric
+                 ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, body.zone_begin, body.zone_end, eos, params)
+                 : krug::update_zones<GeometryKind::planar>(mesh_, body.zone_begin, body.zone_end, eos, params);
+    }, material.eos);
+    if (result.failed_zone >= 0) {
+      fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
+    }
+    internal += result.internal_energy;
+    if (result.stable_time_step < stable_time_step_) {
+      stable_time_step_ = result.stable_time_step;
+      controlling_zone_ = result.controlling_zone;
+    }
+    zone_cycles_ += body.zone_end - body.zone_begin;
+  }
+  ledger_.energy.internal = internal;
+  measure_ledger();
+}
+
+void Simulation::choose_time_step() {
+  time_ += time_step_next_;
+  ++cycle_;
+  time_step_previous_ = time_step_next_;
+  const double remaining = controls_.end_time - time_;
+  double dt = std::min({stable_time_step_, controls_.time_step_growth * time_step_previous_, controls_.max_time_step});
+  if (remaining > 0.0 && dt < time_step_floor_) {
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s", dt, time_step_floor_), controlling_zone_);
+  }
+  time_step_next_ = std::min(dt, std::max(remaining, 0.0));
+  if (time_step_next_ <= 0.0) time_step_next_ = dt;  // finished(); keeps a meaningful value
+}
+
+void Simulation::measure_ledger() {
+  const NodeFields& nodes = mesh_.nodes;
+  double kinetic = 0.0, momentum = 0.0;
+  for (Index p = 0; p < nodes.size(); ++p) {
+    kinetic += nodes.mass[p] * (nodes.u[p] * nodes.u[p] + nodes.v[p] * nodes.v[p]);
+    momentum += nodes.mass[p] * nodes.u[p];
+  }
+  ledger_.energy.kinetic = 0.5 * kinetic;
+  ledger_.axial_momentum = momentum;
+  ledger_.max_kinetic = std::max(ledger_.max_kinetic, ledger_.energy.kinetic);
+  double mass = 0.0;
+  for (Index z = 0; z < mesh_.zones.size(); ++z) {
+    if (mesh_.zones.active[z]) mass += mesh_.zones.mass[z];
+  }
+  ledger_.mass = mass;
+}
+
+void Simulation::fail(const std::string& what, Index zone) const {
+  std::string body_name = "?";
+  long local = zone;
+  for (const Body& body : bodies_) {
+    if (zone >= body.zone_begin && zone < body.zone_end) {
+      body_name = body.name;
+      local = zone - body.zone_begin;
+    }
+  }
+  throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, time_,
+                                     cycle_, what),
+                         body_name, local, time_);
+}
+
+BodySummary Simulation::summarise(const Body& body) const {
+  const NodeFields& nodes = mesh_.nodes;
+  BodySummary s;
+  double mass = 0.0;
+  Vec2 momentum, moment;
+  s.bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  s.bbox_max = -s.bbox_min;
+  for (Index p = body.node_begin; p < body.node_end; ++p) {
+    mass += nodes.mass[p];
+    momentum += nodes.mass[p] * nodes.velocity(p);
+    moment += nodes.mass[p] * nodes.position(p);
+    s.bbox_min = {std::min(s.bbox_min.x, nodes.x[p]), std::min(s.bbox_min.y, nodes.y[p])};
+    s.bbox_max = {std::max(s.bbox_max.x, nodes.x[p]), std::max(s.bbox_max.y, nodes.y[p])};
+  }
+  for (Index z = body.zone_begin; z < body.zone_end; ++z) s.zones += mesh_.zones.active[z] ? 1 : 0;
+  s.mass = whole_body_factor() * mass;
+  if (mass > 0.0) {
+    s.velocity = (1.0 / mass) * momentum;
+    s.centroid = (1.0 / mass) * moment;
+  }
+  return s;
+}
+
+}  // namespace krug

@@ -1,0 +1,50 @@
+// Kernel-level invariants of the Lagrangian step on small meshes built in code (DESIGN.md section 2):
+// the compatible corner forces conserve mass, axial momentum and total energy to round-off.
+#include <catch2/catch.hpp>
+
+#include "krug/krug.hpp"
+
+using namespace krug;
+
+namespace {
+
+Simulation gas_strip(GeometryKind geometry, int nx, int ny, AxisymmetricForm form) {
+  SimulationSetup s;
+  s.geometry = geometry;
+  auto patch = generate::rectangle(s.mesh, generate::graded_axis(0.0, {{1.0, nx, 1.0}}),
+                                   generate::graded_axis(0.0, {{0.05 * ny, ny, 1.0}}), 0);
+  Material gas{"gas", 1.0, IdealGas{1.4}, NoStrength{}};
+  s.materials.push_back(gas);
+  s.bodies.push_back({"gas", 0, patch.node_begin, patch.node_end, patch.zone_begin, patch.zone_end});
+  for (Index z = 0; z < s.mesh.zones.size(); ++z) {
+    const double x = quad::centre(s.mesh.corner_positions(z)).x;
+    s.mesh.zones.density[z] = x < 0.5 ? 1.0 : 0.125;
+    s.mesh.zones.specific_energy[z] = x < 0.5 ? 2.5 : 2.0;
+  }
+  for (Index n : patch.sides["i_min"]) s.constraints.push_back({n, true, false});
+  for (Index n : patch.sides["i_max"]) s.constraints.push_back({n, true, false});
+  s.controls.end_time = 0.2;
+  s.controls.axisymmetric_form = form;
+  return Simulation(std::move(s));
+}
+
+}  // namespace
+
+TEST_CASE("Sod-like strip conserves mass and total energy to round-off", "[conservation]") {
+  const auto [geometry, form] = GENERATE(std::pair{GeometryKind::planar, AxisymmetricForm::control_volume},
+                                         std::pair{GeometryKind::axisymmetric, AxisymmetricForm::control_volume},
+                                         std::pair{GeometryKind::axisymmetric, AxisymmetricForm::area_weighted});
+  Simulation sim = gas_strip(geometry, 60, 4, form);
+  while (!sim.finished()) sim.step();
+  // Compatible scheme: energy exact up to accumulated round-off (~1e-16 per operation, 1e2-1e3 steps).
+  CHECK(sim.ledger().relative_energy_drift() < 1e-12);
+  CHECK(sim.ledger().relative_mass_error() < 1e-14);
+  // Walls at both ends: the axial momentum changes only by the walls' impulse. Not for the
+  // area-weighted RZ form: scaling a zone's corner forces by s_p = M_p/M^A_p breaks their zero sum
+  // (DESIGN.md section 2 step 1; measured 1e-3 relative on this strip), so it is checked only for
+  // the compatible forms.
+  if (form == AxisymmetricForm::area_weighted) return;
+  const double scale = sim.ledger().max_kinetic > 0 ? std::sqrt(2.0 * sim.ledger().max_kinetic * sim.ledger().mass) : 1.0;
+  CHECK(std::abs(sim.ledger().axial_momentum - sim.ledger().initial_axial_momentum -
+                 sim.ledger().axial_boundary_impulse) < 1e-12 * scale);
+}
