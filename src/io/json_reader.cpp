@@ -83,7 +83,12 @@ const Json& JsonObject::member(std::string_view key) const {
 
 void JsonObject::fail(std::string_view key, std::string_view expected) const {
   const auto it = value_.find(key);
-  if (it == value_.end()) throw InputError(fmt::format("{}: missing; expected {}", path_of(key), expected));
+  if (it == value_.end()) {
+    // A near-miss key in the same object is most likely a typo of this one.
+    const auto typo = nearest(key, keys());
+    throw InputError(fmt::format("{}: missing; expected {}{}", path_of(key), expected,
+                                 typo ? fmt::format(" (found \"{}\": did you mean \"{}\"?)", *typo, key) : ""));
+  }
   throw InputError(fmt::format("{}: expected {}, found {}", path_of(key), expected, describe_value(*it)));
 }
 

@@ -236,9 +236,10 @@ void read_initial(JsonObject spec, const Body& body, GeometryKind geometry, Mesh
       field[z] = value;
     }
   };
-  zone_field("density", mesh.zones.density, 0.0, false);  // 0 = the material's reference density
-  for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-    if (mesh.zones.density[z] < 0.0) spec.fail("density", "a positive density (kg/m^3)");
+  if (spec.has("density")) {
+    zone_field("density", mesh.zones.density, 0.0, true);
+  } else {
+    spec.optional_raw("density");  // the material's reference density, already set
   }
   zone_field("specific_internal_energy", mesh.zones.specific_energy, 0.0, false);
   if (auto deposit = spec.optional_object("energy_deposit")) {
@@ -384,6 +385,9 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
                                      setup.mesh.nodes.x[n], setup.mesh.nodes.y[n]));
         }
       }
+    }
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      setup.mesh.zones.density[z] = setup.materials[static_cast<std::size_t>(body.material)].reference_density;
     }
     if (auto initial = spec.optional_object("initial")) {
       read_initial(*initial, body, geometry, setup.mesh);

@@ -108,6 +108,10 @@ void Simulation::initialise() {
         zones.pressure[z] = eos.pressure(rho, e);
         zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]) +
                                                   4.0 * mu / (3.0 * rho), 0.0));
+        if (!std::isfinite(e) || !std::isfinite(zones.pressure[z]) || !std::isfinite(zones.sound_speed[z])) {
+          throw InputError(fmt::format("body '{}': zone {} starts with a non-finite state (rho {}, e {}, p {})",
+                                       body.name, z - body.zone_begin, rho, e, zones.pressure[z]));
+        }
       }
     }, material.eos);
   }

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian 12 machine (packages), builds Krug optimised and passes the test suite:
+# unit, kernel, verification, app and package tests; the convergence studies at reduced size
+# (KRUG_CONVERGENCE_SCALE, default 0.25 here; 1 is the full study); then a build of the unit tests
+# and the app with AddressSanitizer and UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc)
+
+./scripts/install-deps.sh
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$jobs"
+KRUG_CONVERGENCE_SCALE="${KRUG_CONVERGENCE_SCALE:-0.25}" \
+  ctest --test-dir build --output-on-failure -j"$jobs" --timeout 1200
+
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DKRUG_SANITIZE=address,undefined -DKRUG_BUILD_BENCHMARKS=OFF
+cmake --build build-sanitize -j"$jobs" --target krug_unit_tests krug_app
+UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+  ctest --test-dir build-sanitize -L unit --output-on-failure -j"$jobs" --timeout 1200
