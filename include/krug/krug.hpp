@@ -5,6 +5,7 @@
 #include "krug/core/vec2.hpp"
 #include "krug/material/eos.hpp"
 #include "krug/material/material.hpp"
+#include "krug/material/strength.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/quad.hpp"

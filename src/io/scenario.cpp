@@ -34,18 +34,48 @@ Material read_material(const std::string& name, JsonObject spec) {
   m.name = name;
   m.reference_density = spec.number("density", Range::positive());
   JsonObject eos = spec.object("eos");
-  const std::string model = eos.choice("model", {"ideal_gas", "linear"});
+  const std::string model = eos.choice("model", {"ideal_gas", "linear", "mie_gruneisen"});
   if (model == "ideal_gas") {
     const double gamma = eos.number("gamma", Range{1.0, 10.0, true});
     m.eos = IdealGas{gamma};
-  } else {
+  } else if (model == "linear") {
     m.eos = LinearBulk{eos.number("bulk_modulus", Range::positive()), m.reference_density};
+  } else {
+    MieGruneisen mg;
+    mg.reference_density = m.reference_density;
+    mg.bulk_sound_speed = eos.number("bulk_sound_speed", Range::positive());
+    mg.hugoniot_slope = eos.number("hugoniot_slope", Range::between(0.0, 10.0));
+    mg.gruneisen = eos.number("gruneisen", Range::between(0.0, 10.0));
+    m.eos = mg;
   }
   eos.finish();
-  if (auto strength = spec.optional_object("strength")) {
-    strength->choice("model", {"none"}, "none");
-    strength->finish();
+  JsonObject strength = spec.object_or_empty("strength");
+  const std::string strength_model = strength.choice(
+      "model", {"none", "elastic", "perfectly_plastic", "linear_hardening", "johnson_cook"}, "none");
+  if (strength_model == "elastic") {
+    m.strength = Elastic{strength.number("shear_modulus", Range::positive())};
+  } else if (strength_model == "perfectly_plastic") {
+    const double mu = strength.number("shear_modulus", Range::positive());
+    m.strength = PerfectlyPlastic{mu, strength.number("yield_stress", Range::non_negative())};
+  } else if (strength_model == "linear_hardening") {
+    const double mu = strength.number("shear_modulus", Range::positive());
+    const double y0 = strength.number("yield_stress", Range::non_negative());
+    m.strength = LinearHardening{mu, y0, strength.number("hardening_modulus", Range::non_negative())};
+  } else if (strength_model == "johnson_cook") {
+    JohnsonCook jc;
+    jc.shear_modulus = strength.number("shear_modulus", Range::positive());
+    jc.yield_stress = strength.number("yield_stress", Range::non_negative());
+    jc.hardening_coefficient = strength.number("hardening_coefficient", 0.0, Range::non_negative());
+    jc.hardening_exponent = strength.number("hardening_exponent", 1.0, Range::positive());
+    jc.strain_rate_coefficient = strength.number("strain_rate_coefficient", 0.0, Range::non_negative());
+    jc.reference_strain_rate = strength.number("reference_strain_rate", 1.0, Range::positive());
+    jc.thermal_softening_exponent = strength.number("thermal_softening_exponent", 1.0, Range::positive());
+    jc.room_temperature = strength.number("room_temperature", 293.0, Range::positive());
+    jc.melt_temperature = strength.number("melt_temperature", 1.0e9, Range::positive());
+    jc.specific_heat = strength.number("specific_heat", 1.0e9, Range::positive());
+    m.strength = jc;
   }
+  strength.finish();
   spec.finish();
   return m;
 }
@@ -314,6 +344,90 @@ Controls read_controls(JsonObject controls, double end_time) {
   return c;
 }
 
+Index body_index(JsonObject& spec, std::string_view key, const Json& name, const std::vector<Body>& bodies,
+                 const std::string& path) {
+  std::vector<std::string> names;
+  for (const Body& b : bodies) names.push_back(b.name);
+  if (name.is_string()) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].name == name.get<std::string>()) return static_cast<Index>(i);
+    }
+    const auto guess = nearest(name.get<std::string>(), names);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+    throw InputError(fmt::format("{}: unknown body \"{}\"; bodies: {}{}", path, name.get<std::string>(), list,
+                                 guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
+  }
+  spec.fail(key, "body names (strings)");
+}
+
+contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bodies, GeometryKind geometry) {
+  contact::ContactSetup setup;
+  if (const Json* pairs = spec.optional_raw("pairs")) {
+    if (!pairs->is_array()) spec.fail("pairs", "an array of {bodies: [first, second], friction}");
+    Json resolved_pairs = Json::array();
+    for (std::size_t i = 0; i < pairs->size(); ++i) {
+      Json resolved = Json::object();
+      JsonObject pair((*pairs)[i], fmt::format("{}.pairs[{}]", spec.path(), i), &resolved);
+      const Json& names = pair.raw("bodies");
+      if (!names.is_array() || names.size() != 2) pair.fail("bodies", "two body names [first, second] (the same name twice: self-contact)");
+      pair.resolve("bodies", names);
+      contact::BodyPair p;
+      p.first = body_index(pair, "bodies", names[0], bodies, pair.path_of("bodies") + "[0]");
+      p.second = body_index(pair, "bodies", names[1], bodies, pair.path_of("bodies") + "[1]");
+      p.friction = pair.number("friction", 0.0, Range::between(0.0, 10.0));
+      pair.finish();
+      setup.pairs.push_back(p);
+      resolved_pairs.push_back(resolved);
+    }
+    spec.resolve("pairs", resolved_pairs);
+  } else {
+    spec.resolve("pairs", Json::array());
+  }
+  if (const Json* walls = spec.optional_raw("walls")) {
+    if (!walls->is_array()) spec.fail("walls", "an array of {point, normal, friction, bodies}");
+    Json resolved_walls = Json::array();
+    for (std::size_t i = 0; i < walls->size(); ++i) {
+      Json resolved = Json::object();
+      JsonObject wall((*walls)[i], fmt::format("{}.walls[{}]", spec.path(), i), &resolved);
+      contact::RigidWall w;
+      auto vector = [&](std::string_view key) {
+        const Json& v = wall.raw(key);
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+          wall.fail(key, fmt::format("an array [{}, {}] of two numbers", axis_name(geometry, 0), axis_name(geometry, 1)));
+        }
+        wall.resolve(key, v);
+        return Vec2{v[0].get<double>(), v[1].get<double>()};
+      };
+      w.point = vector("point");
+      const Vec2 normal = vector("normal");
+      if (!(norm(normal) > 0.0)) wall.fail("normal", "a non-zero vector pointing into the allowed side");
+      w.normal = (1.0 / norm(normal)) * normal;
+      w.friction = wall.number("friction", 0.0, Range::between(0.0, 10.0));
+      if (const Json* names = wall.optional_raw("bodies")) {
+        if (!names->is_array()) wall.fail("bodies", "an array of body names");
+        for (std::size_t k = 0; k < names->size(); ++k) {
+          w.bodies.push_back(body_index(wall, "bodies", (*names)[k], bodies, fmt::format("{}[{}]", wall.path_of("bodies"), k)));
+        }
+        wall.resolve("bodies", *names);
+      }
+      wall.finish();
+      setup.walls.push_back(w);
+      resolved_walls.push_back(resolved);
+    }
+    spec.resolve("walls", resolved_walls);
+  } else {
+    spec.resolve("walls", Json::array());
+  }
+  const std::string method = spec.choice("method", {"gauss_seidel", "summation"}, "gauss_seidel");
+  setup.controls.method = method == "summation" ? contact::ReactionMethod::summation : contact::ReactionMethod::gauss_seidel;
+  setup.controls.max_sweeps = static_cast<int>(spec.integer("max_sweeps", setup.controls.max_sweeps, 1, 10000));
+  setup.controls.gap_tolerance = spec.number("gap_tolerance", setup.controls.gap_tolerance, Range::positive());
+  setup.controls.overlap_fraction = spec.number("overlap_fraction", setup.controls.overlap_fraction, Range{0.0, 1.0, true});
+  spec.finish();
+  return setup;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
@@ -401,6 +515,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   top.resolve("bodies", resolved_bodies);
   for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
+  setup.contact = read_contact(top.object_or_empty("contact"), setup.bodies, geometry);
 
   setup.controls = read_controls(top.object_or_empty("controls"), end_time);
   {

@@ -41,6 +41,11 @@ Simulation::Simulation(SimulationSetup setup)
       bodies_(std::move(setup.bodies)),
       constraints_(std::move(setup.constraints)),
       controls_(setup.controls) {
+  if (!setup.contact.empty()) {
+    std::vector<std::pair<Index, Index>> ranges;
+    for (const Body& body : bodies_) ranges.emplace_back(body.zone_begin, body.zone_end);
+    contact_ = contact::ContactSolver(std::move(setup.contact), mesh_, ranges);
+  }
   initialise();
 }
 
@@ -93,9 +98,11 @@ void Simulation::initialise() {
       constraints_.push_back({p, false, true});
     }
   }
+  held_x_.assign(static_cast<std::size_t>(nodes.size()), 0);
+  held_y_.assign(static_cast<std::size_t>(nodes.size()), 0);
   for (const NodeConstraint& c : constraints_) {
-    if (c.fix_x) nodes.inv_mass_x[c.node] = 0.0;
-    if (c.fix_y) nodes.inv_mass_y[c.node] = 0.0;
+    if (c.fix_x) { nodes.inv_mass_x[c.node] = 0.0; held_x_[static_cast<std::size_t>(c.node)] = 1; }
+    if (c.fix_y) { nodes.inv_mass_y[c.node] = 0.0; held_y_[static_cast<std::size_t>(c.node)] = 1; }
   }
 
   // Pressure and wave speed from the EOS at the initial state.
@@ -198,12 +205,33 @@ void Simulation::predict_velocities() {
 }
 
 void Simulation::solve_contact_reactions() {
-  // No contact pairs in this scene: R = 0.
+  if (contact_.empty()) return;  // R = 0: a scene without contact pays nothing here
+  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  last_contact_ = contact_.solve(mesh_, dt_mid, time_step_next_);
+  deepest_contact_gap_ = std::min(deepest_contact_gap_, last_contact_.deepest_gap);
+}
+
+void Simulation::book_contact_work(double dt_mid) {
+  // W_contact = sum dt^n R . ubar over the nodes that received a reaction; on a held DOF the
+  // boundary cancels R, doing -R u dt (and taking the axial impulse).
+  const NodeFields& nodes = mesh_.nodes;
+  for (Index p : contact_.touched_nodes()) {
+    const Vec2 r = contact_.reaction_force(p);
+    const double ubar = 0.5 * (nodes.u_old[p] + nodes.u[p]);
+    const double vbar = 0.5 * (nodes.v_old[p] + nodes.v[p]);
+    ledger_.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
+    if (held_x_[static_cast<std::size_t>(p)]) {
+      ledger_.energy.boundary -= dt_mid * r.x * nodes.u[p];
+      ledger_.axial_boundary_impulse -= dt_mid * r.x;
+    }
+    if (held_y_[static_cast<std::size_t>(p)]) ledger_.energy.boundary -= dt_mid * r.y * nodes.v[p];
+  }
 }
 
 void Simulation::correct_and_move() {
   NodeFields& nodes = mesh_.nodes;
   const double dt = time_step_next_;
+  if (!contact_.empty()) book_contact_work(0.5 * (time_step_previous_ + time_step_next_));
   for (Index p = 0; p < nodes.size(); ++p) {
     nodes.x[p] += dt * nodes.u[p];
     nodes.y[p] += dt * nodes.v[p];
@@ -221,11 +249,13 @@ void Simulation::update_zones() {
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
     params.shear_modulus = material.shear_modulus();
-    const ZoneUpdateResult result = std::visit([&](const auto& eos) {
+    // One dispatch per body: the zone loop is compiled for this geometry, EOS and strength model.
+    const ZoneUpdateResult result = std::visit([&](const auto& eos, const auto& strength) {
       return geometry_ == GeometryKind::axisymmetric
-                 ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, body.zone_begin, body.zone_end, eos, params)
-                 : krug::update_zones<GeometryKind::planar>(mesh_, body.zone_begin, body.zone_end, eos, params);
-    }, material.eos);
+                 ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, body.zone_begin, body.zone_end, eos, strength, params)
+                 : krug::update_zones<GeometryKind::planar>(mesh_, body.zone_begin, body.zone_end, eos, strength, params);
+    }, material.eos, material.strength);
+    ledger_.energy.plastic += result.plastic_work;
     if (result.failed_zone >= 0) {
       fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
     }

@@ -19,7 +19,7 @@ struct ViscosityParams {
 
 struct HourglassParams {
   double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
-  double stiffness = 0.0;   // Flanagan-Belytschko stiffness coefficient (x shear modulus)
+  double stiffness = 0.05;  // Flanagan-Belytschko stiffness coefficient (x shear modulus; no effect without strength)
 };
 
 enum class AxisymmetricForm {

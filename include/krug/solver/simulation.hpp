@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "krug/contact/contact.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
@@ -35,6 +36,7 @@ struct SimulationSetup {
   std::vector<Material> materials;
   std::vector<Body> bodies;
   std::vector<NodeConstraint> constraints;
+  contact::ContactSetup contact;
   Controls controls;
 };
 
@@ -70,6 +72,9 @@ class Simulation {
   double next_time_step() const { return time_step_next_; }
   double last_time_step() const { return time_step_previous_; }
   Index controlling_zone() const { return controlling_zone_; }
+  const contact::ContactStatistics& last_contact() const { return last_contact_; }
+  // Deepest predicted gap left by contact over the run so far (m, <= 0).
+  double deepest_contact_gap() const { return deepest_contact_gap_; }
 
   // For tests of the time integration: cap the next step (the CFL and growth limits still apply).
   void cap_next_time_step(double dt);
@@ -88,6 +93,7 @@ class Simulation {
 
   void initialise();
   void measure_ledger();
+  void book_contact_work(double dt_mid);
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
   GeometryKind geometry_;
@@ -95,6 +101,10 @@ class Simulation {
   std::vector<Material> materials_;
   std::vector<Body> bodies_;
   std::vector<NodeConstraint> constraints_;
+  std::vector<std::uint8_t> held_x_, held_y_;  // per node: DOF held by a condition
+  contact::ContactSolver contact_;
+  contact::ContactStatistics last_contact_;
+  double deepest_contact_gap_ = 0.0;
   Controls controls_;
   Ledger ledger_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p (area-weighted RZ form only)

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#include <type_traits>
+
 #include "krug/core/geometry_kind.hpp"
+#include "krug/material/strength.hpp"
 #include "krug/mesh/mesh.hpp"
 
 namespace krug {
@@ -23,15 +26,49 @@ struct ZoneUpdateResult {
   Index controlling_zone = -1;
   Index failed_zone = -1;         // first zone that tangled or produced a non-finite value
   double internal_energy = 0.0;   // sum m e after the update
+  double plastic_work = 0.0;      // plastic work of this step (J per radian or per m)
 };
 
-template <GeometryKind G, class EquationOfState>
+// Velocity gradient, strain rate and spin of a zone from u^{n+1/2} on the mid-step geometry
+// x^{n+1/2} = x^{n+1} - dt^{n+1/2} u^{n+1/2} / 2. In-plane: L = (1/A) sum_p u_p (x) dA/dx_p (Wilkins);
+// hoop (RZ): D_tt = (dV/dt)/V - (dA/dt)/A with the same mid-step gradients (never divides by r).
+template <GeometryKind G>
+inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>& u, double dt,
+                           StrainRate& rate, double& spin) {
+  quad::Corners mid;
+  for (int p = 0; p < 4; ++p) mid[p] = x_new[p] - (0.5 * dt) * u[p];
+  const double area = quad::area(mid);
+  const std::array<Vec2, 4> b = quad::area_gradient(mid);
+  double dux_dx = 0.0, dux_dy = 0.0, duy_dx = 0.0, duy_dy = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    dux_dx += u[p].x * b[p].x;
+    dux_dy += u[p].x * b[p].y;
+    duy_dx += u[p].y * b[p].x;
+    duy_dy += u[p].y * b[p].y;
+  }
+  const double inv_area = 1.0 / area;
+  rate.xx = dux_dx * inv_area;
+  rate.yy = duy_dy * inv_area;
+  rate.xy = 0.5 * (dux_dy + duy_dx) * inv_area;
+  rate.zz = 0.0;
+  if constexpr (G == GeometryKind::axisymmetric) {
+    const std::array<Vec2, 4> c = quad::axisymmetric_volume_gradient(mid);
+    double volume_rate = 0.0;
+    for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], c[p]);
+    rate.zz = volume_rate / quad::axisymmetric_volume(mid) - (dux_dx + duy_dy) * inv_area;
+  }
+  spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
+}
+
+template <GeometryKind G, class EquationOfState, class StrengthModel>
 ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& eos,
-                              const ZoneUpdateParams& params) {
+                              const StrengthModel& strength, const ZoneUpdateParams& params) {
+  constexpr bool has_strength = !std::is_same_v<StrengthModel, NoStrength>;
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const NodeFields& nodes = mesh.nodes;
   ZoneFields& zones = mesh.zones;
   ZoneUpdateResult result;
+  double result_plastic_work = 0.0;
 
   for (Index z = zone_begin; z < zone_end; ++z) {
     if (!zones.active[z]) continue;
@@ -56,6 +93,28 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
     }
     const double old_volume = zones.volume[z];
     const double density = zones.mass[z] / volume;
+
+    if constexpr (has_strength) {
+      // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
+      const std::array<Vec2, 4> u{nodes.velocity(n[0]), nodes.velocity(n[1]), nodes.velocity(n[2]), nodes.velocity(n[3])};
+      StrainRate rate;
+      double spin = 0.0;
+      mid_step_rates<G>(x, u, params.time_step_next, rate, spin);
+      const Deviator previous{zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z]};
+      PlasticState state;
+      state.plastic_strain = zones.plastic_strain[z];
+      if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
+        state.strain_rate = equivalent_strain_rate(rate);
+        state.temperature = strength.temperature_from_energy(energy);
+      }
+      const PlasticReturn plastic = update_deviator(strength, previous, rate, spin, params.time_step_next, state);
+      zones.deviator_xx[z] = plastic.deviator.xx;
+      zones.deviator_yy[z] = plastic.deviator.yy;
+      zones.deviator_xy[z] = plastic.deviator.xy;
+      zones.deviator_zz[z] = plastic.deviator.zz;
+      zones.plastic_strain[z] += plastic.plastic_strain_increment;
+      result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
+    }
     const double pressure = eos.pressure(density, energy);
     const double wave_speed_squared =
         eos.sound_speed_squared(density, energy, pressure) + 4.0 * params.shear_modulus / (3.0 * density);
@@ -83,6 +142,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       result.controlling_zone = z;
     }
   }
+  result.plastic_work = result_plastic_work;
   return result;
 }
 

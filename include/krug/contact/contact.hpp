@@ -1,0 +1,107 @@
+#pragma once
+// Contact by reaction forces (DESIGN.md section 2 step 3): node-on-segment between the bodies a
+// scenario pairs (both ways), self-contact of a body's own boundary, and rigid walls that push but
+// never pull. Works on the velocities after the predictor: each reaction changes velocities by
+// dt^n R W, and the predicted positions x* = x^n + dt^{n+1/2} u follow.
+#include <vector>
+
+#include "krug/contact/broad_phase.hpp"
+#include "krug/contact/kernels.hpp"
+#include "krug/mesh/mesh.hpp"
+
+namespace krug::contact {
+
+struct BodyPair {
+  Index first = 0;
+  Index second = 0;       // == first: self-contact of the body's boundary
+  double friction = 0.0;  // Coulomb coefficient
+};
+
+// A rigid plane: points x with (x - point) . normal >= 0 are allowed; `normal` is a unit vector.
+struct RigidWall {
+  Vec2 point;
+  Vec2 normal{1.0, 0.0};
+  double friction = 0.0;
+  std::vector<Index> bodies;  // empty: every body
+};
+
+enum class ReactionMethod {
+  gauss_seidel,  // projected Gauss-Seidel with accumulated-impulse clamping (default)
+  summation      // the paper's: all reactions from the same predicted state, summed; two-way pairs weighted 1/2
+};
+
+struct ContactControls {
+  ReactionMethod method = ReactionMethod::gauss_seidel;
+  int max_sweeps = 50;
+  double gap_tolerance = 1e-6;  // sweeps stop when no gap is below -tolerance x segment length
+  double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step
+};
+
+struct ContactSetup {
+  std::vector<BodyPair> pairs;
+  std::vector<RigidWall> walls;
+  ContactControls controls;
+  bool empty() const { return pairs.empty() && walls.empty(); }
+};
+
+struct ContactStatistics {
+  long candidates = 0;
+  long active = 0;               // candidates with a positive normal reaction at the end
+  int sweeps = 0;
+  double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
+  double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)
+};
+
+// Per-body boundary description, rebuilt when the topology changes.
+struct BodyBoundary {
+  std::vector<BoundarySegment> segments;
+  std::vector<Index> nodes;      // unique boundary nodes
+};
+
+class ContactSolver {
+ public:
+  ContactSolver() = default;
+  ContactSolver(ContactSetup setup, const Mesh& mesh, const std::vector<std::pair<Index, Index>>& body_zone_ranges);
+
+  bool empty() const { return setup_.empty(); }
+  void rebuild_boundaries(const Mesh& mesh);
+
+  // Applies the reactions to nodes.u/v (which hold the predicted velocities u*). Records the
+  // reaction force on each touched node for the ledger (reaction_force / touched_nodes).
+  ContactStatistics solve(Mesh& mesh, double dt_mid, double dt_next);
+
+  const std::vector<Index>& touched_nodes() const { return touched_; }
+  Vec2 reaction_force(Index node) const { return {reaction_x_[node], reaction_y_[node]}; }
+  const ContactSetup& setup() const { return setup_; }
+
+ private:
+  struct Candidate {
+    Index node, a, b;      // b < 0 with a < 0: a wall (wall index in `wall`)
+    Index wall = -1;
+    double friction = 0.0;
+    double weight = 1.0;   // 1/2 for two-way pairs in the summation method
+    double start_gap = 0.0;
+    double length = 0.0;   // segment length (m), for tolerances
+    double normal = 0.0;   // accumulated normal reaction (N per radian or per m)
+    double tangent = 0.0;  // accumulated tangential reaction
+  };
+
+  void find_candidates(const Mesh& mesh, double dt_next);
+  void add_node_segment_candidates(const Mesh& mesh, const BodyBoundary& slaves, const BodyBoundary& masters,
+                                   double friction, double weight, bool self, double dt_next);
+  // Returns the gap after this update (for the convergence check).
+  double update(Candidate& c, Mesh& mesh, double dt_mid, double dt_next, bool accumulate_only);
+  void apply(Mesh& mesh, Index node, Vec2 direction, double impulse_force, double dt_mid);
+
+  ContactSetup setup_;
+  std::vector<std::pair<Index, Index>> zone_ranges_;
+  std::vector<BodyBoundary> boundaries_;
+  std::vector<Candidate> candidates_;
+  std::vector<Box> boxes_;
+  UniformGrid grid_;
+  std::vector<double> reaction_x_, reaction_y_;
+  std::vector<Index> touched_;
+  std::vector<std::uint8_t> touched_flag_;
+};
+
+}  // namespace krug::contact
