@@ -13,14 +13,6 @@ namespace {
 constexpr double end_slack = 1e-3;
 constexpr double start_depth = 0.25;
 
-Vec2 predicted(const NodeFields& nodes, Index p, double dt) {
-  return {nodes.x[p] + dt * nodes.u[p], nodes.y[p] + dt * nodes.v[p]};
-}
-
-InverseMass inverse_mass(const NodeFields& nodes, Index p) {
-  return p < 0 ? InverseMass{} : InverseMass{nodes.inv_mass_x[p], nodes.inv_mass_y[p]};
-}
-
 }  // namespace
 
 ContactSolver::ContactSolver(ContactSetup setup, const Mesh& mesh,
@@ -43,50 +35,196 @@ void ContactSolver::rebuild_boundaries(const Mesh& mesh) {
   }
 }
 
-void ContactSolver::add_node_segment_candidates(const Mesh& mesh, const BodyBoundary& slaves,
-                                                const BodyBoundary& masters, double friction, double weight,
-                                                bool self, double dt_next) {
-  const NodeFields& nodes = mesh.nodes;
+// --- points: nodes and particles -------------------------------------------------------------
+
+Vec2 ContactSolver::position(Index point) const {
+  return is_particle(point) ? particles_->position(particle_of(point)) : mesh_->nodes.position(point);
+}
+Vec2 ContactSolver::velocity(Index point) const {
+  return is_particle(point) ? particles_->velocity(particle_of(point)) : mesh_->nodes.velocity(point);
+}
+Vec2 ContactSolver::predicted(Index point, double dt) const { return position(point) + dt * velocity(point); }
+InverseMass ContactSolver::inverse_mass(Index point) const {
+  if (point == -1) return {};
+  if (is_particle(point)) {
+    const double inverse = 1.0 / particles_->mass[particle_of(point)];
+    return {inverse, inverse};
+  }
+  return {mesh_->nodes.inv_mass_x[point], mesh_->nodes.inv_mass_y[point]};
+}
+double ContactSolver::radius(Index point) const {
+  return is_particle(point) ? particles_->radius[particle_of(point)] : 0.0;
+}
+Vec2 ContactSolver::reaction_force(Index point) const {
+  if (is_particle(point)) {
+    const Index i = particle_of(point);
+    return {particle_reaction_x_[i], particle_reaction_y_[i]};
+  }
+  return {reaction_x_[point], reaction_y_[point]};
+}
+
+void ContactSolver::touch(Index point, Vec2 force) {
+  if (is_particle(point)) {
+    const Index i = particle_of(point);
+    if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) touched_.push_back(point);
+    particle_reaction_x_[i] += force.x;
+    particle_reaction_y_[i] += force.y;
+    if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) particle_reaction_x_[i] = 1e-300;
+    return;
+  }
+  reaction_x_[point] += force.x;
+  reaction_y_[point] += force.y;
+  if (!touched_flag_[point]) {
+    touched_flag_[point] = 1;
+    touched_.push_back(point);
+  }
+}
+
+void ContactSolver::apply(Index point, Vec2 direction, double force, double dt_mid) {
+  if (point == -1 || force == 0.0) return;
+  const InverseMass w = inverse_mass(point);
+  if (is_particle(point)) {
+    const Index i = particle_of(point);
+    particles_->u[i] += dt_mid * force * direction.x * w.x;
+    particles_->v[i] += dt_mid * force * direction.y * w.y;
+  } else {
+    mesh_->nodes.u[point] += dt_mid * force * direction.x * w.x;
+    mesh_->nodes.v[point] += dt_mid * force * direction.y * w.y;
+  }
+  touch(point, force * direction);
+}
+
+// --- candidates ---------------------------------------------------------------------------------
+
+void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
+                                                double friction, double weight, bool self, double dt_next) {
   boxes_.clear();
   for (const BoundarySegment& s : masters.segments) {
     Box box;
-    box.include(nodes.position(s.a));
-    box.include(nodes.position(s.b));
-    box.include(predicted(nodes, s.a, dt_next));
-    box.include(predicted(nodes, s.b, dt_next));
-    boxes_.push_back(box.expanded(start_depth * norm(nodes.position(s.b) - nodes.position(s.a))));
+    box.include(position(s.a));
+    box.include(position(s.b));
+    box.include(predicted(s.a, dt_next));
+    box.include(predicted(s.b, dt_next));
+    boxes_.push_back(box.expanded(start_depth * norm(position(s.b) - position(s.a))));
   }
   grid_.build(boxes_);
   for (Index c : slaves.nodes) {
     Box swept;
-    swept.include(nodes.position(c));
-    swept.include(predicted(nodes, c, dt_next));
+    swept.include(position(c));
+    swept.include(predicted(c, dt_next));
     grid_.query(swept, [&](std::size_t k) {
       const BoundarySegment& s = masters.segments[k];
       if (s.a == c || s.b == c) return;
-      const SegmentProjection start = project(nodes.position(c), nodes.position(s.a), nodes.position(s.b), 0.0);
-      const double length = norm(nodes.position(s.b) - nodes.position(s.a));
+      const SegmentProjection start = project(position(c), position(s.a), position(s.b), 0.0);
+      const double length = norm(position(s.b) - position(s.a));
       if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
       if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
-      candidates_.push_back({c, s.a, s.b, -1, friction, weight, std::min(start.gap, 0.0), length, 0.0, 0.0});
+      Candidate candidate{c, s.a, s.b};
+      candidate.kind = Kind::node_segment;
+      candidate.friction = friction;
+      candidate.weight = weight;
+      candidate.start_gap = std::min(start.gap, 0.0);
+      candidate.length = length;
+      candidates_.push_back(candidate);
     });
   }
 }
 
-void ContactSolver::find_candidates(const Mesh& mesh, double dt_next) {
+void ContactSolver::add_particle_candidates(double dt_next) {
+  const Index count = particles_->size();
+  if (count == 0) return;
+  auto swept_box = [&](Index point) {
+    Box box;
+    box.include(position(point));
+    box.include(predicted(point, dt_next));
+    return box.expanded(radius(point));
+  };
+  // Particles against the segments of every body.
+  boxes_.clear();
+  std::vector<const BoundarySegment*> segments;
+  for (const BodyBoundary& boundary : boundaries_) {
+    for (const BoundarySegment& s : boundary.segments) {
+      Box box;
+      box.include(position(s.a));
+      box.include(position(s.b));
+      box.include(predicted(s.a, dt_next));
+      box.include(predicted(s.b, dt_next));
+      boxes_.push_back(box);
+      segments.push_back(&s);
+    }
+  }
+  grid_.build(boxes_);
+  for (Index i = 0; i < count; ++i) {
+    const Index point = particle_point(i);
+    const double r = radius(point);
+    grid_.query(swept_box(point), [&](std::size_t k) {
+      const BoundarySegment& s = *segments[k];
+      const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
+      const double length = norm(position(s.b) - position(s.a));
+      if (start.inside && start.gap < -2.0 * r) return;  // centre behind the face: the far side of a body
+      Candidate candidate{point, s.a, s.b};
+      candidate.kind = Kind::particle_segment;
+      candidate.start_gap = std::min(start.gap, 0.0);
+      candidate.length = std::max(length, r);
+      candidates_.push_back(candidate);
+    });
+  }
+  // Particles against each other.
+  boxes_.clear();
+  for (Index i = 0; i < count; ++i) boxes_.push_back(swept_box(particle_point(i)));
+  grid_.build(boxes_);
+  for (Index i = 0; i < count; ++i) {
+    grid_.query(boxes_[static_cast<std::size_t>(i)], [&](std::size_t j) {
+      if (static_cast<Index>(j) <= i) return;
+      const Index a = particle_point(i), b = particle_point(static_cast<Index>(j));
+      const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
+      Candidate candidate{a, b, -1};
+      candidate.kind = Kind::particle_particle;
+      candidate.start_gap = std::min(start_gap, 0.0);
+      candidate.length = std::max(radius(a), radius(b));
+      candidates_.push_back(candidate);
+    });
+  }
+  // Particles against the walls and the axis.
+  for (Index i = 0; i < count; ++i) {
+    const Index point = particle_point(i);
+    const double reach = dt_next * norm(velocity(point)) + radius(point);
+    for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+      const RigidWall& wall = setup_.walls[w];
+      const Index origin = particles_->body[i];
+      if (!wall.bodies.empty() && std::find(wall.bodies.begin(), wall.bodies.end(), origin) == wall.bodies.end()) continue;
+      const double start_gap = dot(position(point) - wall.point, wall.normal) - radius(point);
+      if (start_gap + radius(point) - reach > 0.0) continue;
+      Candidate candidate{point, -1, -1, static_cast<Index>(w)};
+      candidate.kind = Kind::wall;
+      candidate.friction = wall.friction;
+      candidate.start_gap = std::min(start_gap, 0.0);
+      candidate.length = radius(point);
+      candidates_.push_back(candidate);
+    }
+    if (setup_.axis_wall && position(point).y - reach <= 0.0) {
+      Candidate candidate{point, -1, -1, -2};
+      candidate.kind = Kind::wall;
+      candidate.start_gap = std::min(position(point).y - radius(point), 0.0);
+      candidate.length = radius(point);
+      candidates_.push_back(candidate);
+    }
+  }
+}
+
+void ContactSolver::find_candidates(double dt_next) {
   candidates_.clear();
   const bool summation = setup_.controls.method == ReactionMethod::summation;
   for (const BodyPair& pair : setup_.pairs) {
     const BodyBoundary& first = boundaries_[static_cast<std::size_t>(pair.first)];
     const BodyBoundary& second = boundaries_[static_cast<std::size_t>(pair.second)];
     if (pair.first == pair.second) {
-      add_node_segment_candidates(mesh, first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next);
+      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next);
     } else {
-      add_node_segment_candidates(mesh, first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
-      add_node_segment_candidates(mesh, second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
+      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
+      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
     }
   }
-  const NodeFields& nodes = mesh.nodes;
   for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
     const RigidWall& wall = setup_.walls[w];
     for (std::size_t b = 0; b < boundaries_.size(); ++b) {
@@ -95,131 +233,161 @@ void ContactSolver::find_candidates(const Mesh& mesh, double dt_next) {
         continue;
       }
       double mean_length = 0.0;
-      for (const BoundarySegment& s : boundaries_[b].segments) mean_length += norm(nodes.position(s.b) - nodes.position(s.a));
+      for (const BoundarySegment& s : boundaries_[b].segments) mean_length += norm(position(s.b) - position(s.a));
       mean_length /= static_cast<double>(std::max<std::size_t>(boundaries_[b].segments.size(), 1));
       for (Index c : boundaries_[b].nodes) {
-        const double start_gap = dot(nodes.position(c) - wall.point, wall.normal);
-        const double reach = dt_next * norm(nodes.velocity(c));
+        const double start_gap = dot(position(c) - wall.point, wall.normal);
+        const double reach = dt_next * norm(velocity(c));
         if (start_gap - reach > 0.0) continue;  // cannot reach the wall in this step
-        candidates_.push_back({c, -1, -1, static_cast<Index>(w), wall.friction, 1.0, std::min(start_gap, 0.0),
-                               mean_length, 0.0, 0.0});
+        Candidate candidate{c, -1, -1, static_cast<Index>(w)};
+        candidate.kind = Kind::wall;
+        candidate.friction = wall.friction;
+        candidate.start_gap = std::min(start_gap, 0.0);
+        candidate.length = mean_length;
+        candidates_.push_back(candidate);
       }
     }
   }
+  if (setup_.particles) add_particle_candidates(dt_next);
 }
 
-void ContactSolver::apply(Mesh& mesh, Index node, Vec2 direction, double force, double dt_mid) {
-  if (node < 0 || force == 0.0) return;
-  NodeFields& nodes = mesh.nodes;
-  nodes.u[node] += dt_mid * force * direction.x * nodes.inv_mass_x[node];
-  nodes.v[node] += dt_mid * force * direction.y * nodes.inv_mass_y[node];
-  reaction_x_[node] += force * direction.x;
-  reaction_y_[node] += force * direction.y;
-  if (!touched_flag_[node]) {
-    touched_flag_[node] = 1;
-    touched_.push_back(node);
+// --- the reaction kernel ------------------------------------------------------------------------
+
+ContactSolver::Geometry ContactSolver::contact_geometry(const Candidate& c, double dt_next) const {
+  Geometry g;
+  const Vec2 point = predicted(c.node, dt_next);
+  switch (c.kind) {
+    case Kind::wall: {
+      const Vec2 origin = c.wall >= 0 ? setup_.walls[static_cast<std::size_t>(c.wall)].point : Vec2{0.0, 0.0};
+      g.normal = c.wall >= 0 ? setup_.walls[static_cast<std::size_t>(c.wall)].normal : Vec2{0.0, 1.0};
+      g.tangent = {-g.normal.y, g.normal.x};
+      g.gap = dot(point - origin, g.normal) - radius(c.node);
+      break;
+    }
+    case Kind::node_segment: {
+      const Vec2 a = predicted(c.a, dt_next), b = predicted(c.b, dt_next);
+      const SegmentProjection p = project(point, a, b, 0.0);
+      const Vec2 ab = b - a;
+      const double along = dot(point - a, ab) / std::max(dot(ab, ab), 1e-300);
+      g.valid = along >= -end_slack && along <= 1.0 + end_slack;
+      g.xi = p.xi;
+      g.gap = p.gap;
+      g.normal = p.normal;
+      g.tangent = p.tangent;
+      break;
+    }
+    case Kind::particle_segment: {
+      const Vec2 a = predicted(c.a, dt_next), b = predicted(c.b, dt_next);
+      const SegmentProjection p = project(point, a, b, 0.0);
+      g.xi = p.xi;
+      if (p.inside) {
+        // Over the face: the signed distance along its outward normal (negative once the centre is behind it).
+        g.normal = p.normal;
+        g.gap = p.gap - radius(c.node);
+      } else {
+        // Beside the face: against its end point, a convex corner to roll over.
+        const Vec2 offset = point - (a + p.xi * (b - a));
+        const double distance = norm(offset);
+        g.normal = distance > 0.0 ? (1.0 / distance) * offset : p.normal;
+        g.gap = distance - radius(c.node);
+      }
+      g.tangent = {-g.normal.y, g.normal.x};
+      break;
+    }
+    case Kind::particle_particle: {
+      const Vec2 other = predicted(c.a, dt_next);
+      const Vec2 offset = point - other;
+      const double distance = norm(offset);
+      g.normal = distance > 0.0 ? (1.0 / distance) * offset : Vec2{1.0, 0.0};
+      g.tangent = {-g.normal.y, g.normal.x};
+      g.gap = distance - radius(c.node) - radius(c.a);
+      g.xi = 0.0;  // the whole reaction on the other particle
+      break;
+    }
   }
+  return g;
 }
 
-double ContactSolver::update(Candidate& c, Mesh& mesh, double dt_mid, double dt_next, bool accumulate_only) {
-  const NodeFields& nodes = mesh.nodes;
-  const Vec2 point = predicted(nodes, c.node, dt_next);
-  double xi = 0.0, gap = 0.0;
-  Vec2 normal, tangent;
-  bool valid = true;
-  if (c.wall >= 0) {
-    const RigidWall& wall = setup_.walls[static_cast<std::size_t>(c.wall)];
-    normal = wall.normal;
-    tangent = {-normal.y, normal.x};
-    gap = dot(point - wall.point, normal);
-  } else {
-    const SegmentProjection p = project(point, predicted(nodes, c.a, dt_next), predicted(nodes, c.b, dt_next), 0.0);
-    const double slack = end_slack;
-    const Vec2 ab = predicted(nodes, c.b, dt_next) - predicted(nodes, c.a, dt_next);
-    const double along = dot(point - predicted(nodes, c.a, dt_next), ab) / std::max(dot(ab, ab), 1e-300);
-    valid = along >= -slack && along <= 1.0 + slack;
-    xi = p.xi;
-    gap = p.gap;
-    normal = p.normal;
-    tangent = p.tangent;
-  }
-  const InverseMass w_point = inverse_mass(nodes, c.node), w_a = inverse_mass(nodes, c.a),
-                    w_b = inverse_mass(nodes, c.b);
-  const double w = contact_inverse_mass(normal, xi, w_point, w_a, w_b);
+// The gap a contact is driven to this step: 0, or for a pre-existing overlap (start gap < 0) the start
+// gap less what may be removed in one step (a fraction of it, at most overlap_speed x dt).
+double ContactSolver::overlap_target(const Candidate& c, double dt_next) const {
+  if (c.start_gap >= 0.0) return 0.0;
+  const double removal = std::min(setup_.controls.overlap_fraction * -c.start_gap, setup_.controls.overlap_speed * dt_next);
+  return c.start_gap + removal;
+}
+
+double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
+  const Geometry g = contact_geometry(c, dt_next);
+  const InverseMass w_point = inverse_mass(c.node), w_a = inverse_mass(c.a), w_b = inverse_mass(c.b);
+  const double w = contact_inverse_mass(g.normal, g.xi, w_point, w_a, w_b);
   if (w <= 0.0) return 0.0;
-  // A pre-existing overlap is removed by at most overlap_fraction of its start depth per step.
-  const double target = c.start_gap < 0.0 ? (1.0 - setup_.controls.overlap_fraction) * c.start_gap : 0.0;
-  double increment = valid ? -(gap - target) / (dt_mid * dt_next * w) : -c.normal;
-  increment *= c.weight;
+  const double target = overlap_target(c, dt_next);
+  const double increment = g.valid ? -c.weight * (g.gap - target) / (dt_mid * dt_next * w) : -c.normal;
   const double total = clamp_normal(c.normal, increment);
   const double change = total - c.normal;
-  if (accumulate_only) {
-    c.normal = total;
-    return gap;
-  }
   c.normal = total;
-  apply(mesh, c.node, normal, change, dt_mid);
-  apply(mesh, c.a, normal, -(1.0 - xi) * change, dt_mid);
-  apply(mesh, c.b, normal, -xi * change, dt_mid);
-  const double gap_after = gap + dt_mid * dt_next * w * change;
+  apply(c.node, g.normal, change, dt_mid);
+  apply(c.a, g.normal, -(1.0 - g.xi) * change, dt_mid);
+  apply(c.b, g.normal, -g.xi * change, dt_mid);
+  const double gap_after = g.gap + dt_mid * dt_next * w * change;
 
   if (c.friction > 0.0) {
-    const double wt = contact_inverse_mass(tangent, xi, w_point, w_a, w_b);
+    const double wt = contact_inverse_mass(g.tangent, g.xi, w_point, w_a, w_b);
     if (wt > 0.0) {
-      Vec2 relative = nodes.velocity(c.node);
-      if (c.a >= 0) relative -= (1.0 - xi) * nodes.velocity(c.a) + xi * nodes.velocity(c.b);
-      const double slip = dot(relative, tangent);
+      Vec2 relative = velocity(c.node);
+      if (c.a != -1) relative -= (1.0 - g.xi) * velocity(c.a);
+      if (c.b != -1) relative -= g.xi * velocity(c.b);
+      const double slip = dot(relative, g.tangent);
       const double friction_total = clamp_friction(c.tangent, -slip / (dt_mid * wt), c.friction * c.normal);
       const double friction_change = friction_total - c.tangent;
       c.tangent = friction_total;
-      apply(mesh, c.node, tangent, friction_change, dt_mid);
-      apply(mesh, c.a, tangent, -(1.0 - xi) * friction_change, dt_mid);
-      apply(mesh, c.b, tangent, -xi * friction_change, dt_mid);
+      apply(c.node, g.tangent, friction_change, dt_mid);
+      apply(c.a, g.tangent, -(1.0 - g.xi) * friction_change, dt_mid);
+      apply(c.b, g.tangent, -g.xi * friction_change, dt_mid);
     }
   }
-  return valid ? gap_after - target : std::numeric_limits<double>::infinity();
+  return g.valid ? gap_after - target : std::numeric_limits<double>::infinity();
 }
 
-ContactStatistics ContactSolver::solve(Mesh& mesh, double dt_mid, double dt_next) {
+ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next) {
+  mesh_ = &mesh;
+  particles_ = &particles;
   for (Index p : touched_) {
+    if (is_particle(p)) continue;
     reaction_x_[p] = reaction_y_[p] = 0.0;
     touched_flag_[p] = 0;
   }
   touched_.clear();
+  particle_reaction_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
+  particle_reaction_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   ContactStatistics stats;
-  find_candidates(mesh, dt_next);
+  find_candidates(dt_next);
   stats.candidates = static_cast<long>(candidates_.size());
   if (candidates_.empty()) return stats;
 
   if (setup_.controls.method == ReactionMethod::summation) {
-    // All reactions from the same predicted state, then applied together (one pass).
-    for (Candidate& c : candidates_) update(c, mesh, dt_mid, dt_next, true);
+    // The paper's: every reaction from the same predicted state, then all applied together.
+    std::vector<Geometry> geometry;
+    geometry.reserve(candidates_.size());
     for (Candidate& c : candidates_) {
-      const double total = c.normal;
-      c.normal = 0.0;
-      // Re-run the application with the stored total: treat it as the whole change.
-      const NodeFields& nodes = mesh.nodes;
-      Vec2 normal;
-      double xi = 0.0;
-      if (c.wall >= 0) {
-        normal = setup_.walls[static_cast<std::size_t>(c.wall)].normal;
-      } else {
-        const SegmentProjection p = project(predicted(nodes, c.node, dt_next), predicted(nodes, c.a, dt_next),
-                                            predicted(nodes, c.b, dt_next), 0.0);
-        normal = p.normal;
-        xi = p.xi;
-      }
-      c.normal = total;
-      apply(mesh, c.node, normal, total, dt_mid);
-      apply(mesh, c.a, normal, -(1.0 - xi) * total, dt_mid);
-      apply(mesh, c.b, normal, -xi * total, dt_mid);
+      const Geometry g = contact_geometry(c, dt_next);
+      geometry.push_back(g);
+      const double w = contact_inverse_mass(g.normal, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
+      const double target = overlap_target(c, dt_next);
+      c.normal = (w > 0.0 && g.valid) ? std::max(0.0, -c.weight * (g.gap - target) / (dt_mid * dt_next * w)) : 0.0;
+    }
+    for (std::size_t k = 0; k < candidates_.size(); ++k) {
+      const Candidate& c = candidates_[k];
+      apply(c.node, geometry[k].normal, c.normal, dt_mid);
+      apply(c.a, geometry[k].normal, -(1.0 - geometry[k].xi) * c.normal, dt_mid);
+      apply(c.b, geometry[k].normal, -geometry[k].xi * c.normal, dt_mid);
     }
     stats.sweeps = 1;
   } else {
     for (int sweep = 0; sweep < setup_.controls.max_sweeps; ++sweep) {
-      double worst = 0.0;  // deepest remaining penetration relative to the segment length
+      double worst = 0.0;  // deepest remaining penetration relative to the contact's length scale
       for (Candidate& c : candidates_) {
-        const double gap = update(c, mesh, dt_mid, dt_next, false);
+        const double gap = update(c, dt_mid, dt_next);
         if (gap < 0.0) worst = std::max(worst, -gap / std::max(c.length, 1e-300));
       }
       stats.sweeps = sweep + 1;
@@ -229,21 +397,15 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, double dt_mid, double dt_next
   for (const Candidate& c : candidates_) {
     if (c.normal > 0.0) ++stats.active;
     stats.total_normal += c.normal;
-  }
-  // Deepest gap left (m), measured on the final predicted positions.
-  const NodeFields& nodes = mesh.nodes;
-  for (const Candidate& c : candidates_) {
-    double gap;
-    if (c.wall >= 0) {
-      const RigidWall& wall = setup_.walls[static_cast<std::size_t>(c.wall)];
-      gap = dot(predicted(nodes, c.node, dt_next) - wall.point, wall.normal);
-    } else {
-      const SegmentProjection p = project(predicted(nodes, c.node, dt_next), predicted(nodes, c.a, dt_next),
-                                          predicted(nodes, c.b, dt_next), 0.0);
-      if (!p.inside) continue;
-      gap = p.gap - (c.start_gap < 0.0 ? c.start_gap : 0.0);
+    const Geometry g = contact_geometry(c, dt_next);
+    if (c.start_gap < 0.0 && c.normal > 0.0) {
+      // The part of R that opens the overlap (removal / (dt^n dt^{n+1/2} w)) and the kinetic energy it gives.
+      const double w = contact_inverse_mass(g.normal, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
+      const double opening = std::min(c.normal, (overlap_target(c, dt_next) - c.start_gap) / (dt_mid * dt_next * w));
+      stats.overlap_work += 0.5 * dt_mid * dt_mid * w * opening * opening;
     }
-    stats.deepest_gap = std::min(stats.deepest_gap, gap);
+    if (!g.valid) continue;
+    stats.deepest_gap = std::min(stats.deepest_gap, g.gap - std::min(c.start_gap, 0.0));
   }
   return stats;
 }

@@ -60,6 +60,7 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                            {"viscous", number(whole * e.viscous)},
                            {"hourglass", number(whole * e.hourglass)},
                            {"contact", number(whole * e.contact)},
+                           {"contact_overlap", number(whole * e.overlap)},
                            {"converted", number(whole * e.converted)},
                            {"boundary", number(whole * e.boundary)},
                            {"total", number(whole * e.total())},
@@ -73,9 +74,31 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                          {"centroid", pair(b.centroid)},
                          {"bbox", {{"min", pair(b.bbox_min)}, {"max", pair(b.bbox_max)}}},
                          {"zones", b.zones}};
+    if (simulation.fracture_enabled()) {
+      const Index index = static_cast<Index>(&body - simulation.bodies().data());
+      const FractureCounts& counts = simulation.fracture_counts(index);
+      Json pieces = Json::array();
+      for (const Fragment& f : simulation.fragments(body)) {
+        pieces.push_back({{"mass", f.mass}, {"velocity", pair(f.velocity)}, {"centroid", pair(f.centroid)}, {"zones", f.zones}});
+      }
+      bodies[body.name]["fracture"] = {{"damaged_zones", counts.damaged},
+                                       {"converted_zones", counts.converted},
+                                       {"interior_conversions", counts.interior_conversions},
+                                       {"converted_mass", whole * counts.converted_mass},
+                                       {"fragments", pieces}};
+    }
   }
   s["bodies"] = bodies;
-  s["particles"] = {{"count", 0}, {"mass", 0.0}, {"momentum", Json::array({0.0, 0.0})}};
+  const Particles& particles = simulation.particles();
+  double particle_mass = 0.0;
+  Vec2 particle_momentum;
+  for (Index i = 0; i < particles.size(); ++i) {
+    particle_mass += particles.mass[i];
+    particle_momentum += particles.mass[i] * particles.velocity(i);
+  }
+  s["particles"] = {{"count", particles.size()},
+                    {"mass", whole * particle_mass},
+                    {"momentum", pair(whole * particle_momentum)}};
   return s.dump(2) + "\n";
 }
 
@@ -114,13 +137,18 @@ void RunRecorder::write_history_row(const Simulation& simulation) {
   history_ << fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
                           whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
                           whole * e.hourglass, whole * e.contact, whole * e.converted, whole * e.boundary,
-                          whole * e.total(), simulation.ledger().relative_energy_drift(), 0);
+                          whole * e.total(), simulation.ledger().relative_energy_drift(), simulation.particles().size());
 }
 
 void RunRecorder::write_snapshot(const Simulation& simulation) {
   const std::string name = fmt::format("snapshots/state_{:05d}.vtu", snapshots_.size());
   write_vtu(simulation, directory_ / name);
   snapshots_.emplace_back(simulation.time(), name);
+  if (simulation.fracture_enabled()) {
+    const std::string particles = fmt::format("snapshots/particles_{:05d}.vtp", particle_snapshots_.size());
+    write_vtp(simulation, directory_ / particles);
+    particle_snapshots_.emplace_back(simulation.time(), particles);
+  }
 }
 
 void RunRecorder::observe(const Simulation& simulation) {
@@ -142,9 +170,13 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   write_history_row(simulation);
   history_.flush();
   write_vtu(simulation, directory_ / "final.vtu");
+  if (simulation.fracture_enabled()) write_vtp(simulation, directory_ / "final_particles.vtp");
   std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   for (const auto& [time, file] : snapshots_) {
     pvd += fmt::format("    <DataSet timestep=\"{:.9e}\" part=\"0\" file=\"{}\"/>\n", time, file);
+  }
+  for (const auto& [time, file] : particle_snapshots_) {
+    pvd += fmt::format("    <DataSet timestep=\"{:.9e}\" part=\"1\" file=\"{}\"/>\n", time, file);
   }
   pvd += "  </Collection>\n</VTKFile>\n";
   write_text_atomically(directory_ / "run.pvd", pvd);

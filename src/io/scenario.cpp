@@ -29,7 +29,7 @@ AxisNames axis_names(GeometryKind g) {
   return {std::string(axis_name(g, 0)), std::string(axis_name(g, 1))};
 }
 
-Material read_material(const std::string& name, JsonObject spec) {
+Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits) {
   Material m;
   m.name = name;
   m.reference_density = spec.number("density", Range::positive());
@@ -76,6 +76,22 @@ Material read_material(const std::string& name, JsonObject spec) {
     m.strength = jc;
   }
   strength.finish();
+  if (auto f = spec.optional_object("fracture")) {
+    // Criteria (1) of the paper: each enabled only when its limit is given.
+    auto limit = [&](std::string_view key) {
+      return f->has(key) ? f->number(key, Range::positive()) : (f->optional_raw(key), fracture::disabled);
+    };
+    limits.elongation = limit("elongation");
+    limits.tensile_stress = limit("tensile_stress");
+    limits.compressive_stress = limit("compressive_stress");
+    limits.shear_strain = limit("shear_strain");
+    limits.internal_energy = limit("internal_energy");
+    limits.loosening = f->number("loosening", limits.loosening, Range{0.0, 1.0, true});
+    f->finish();
+    if (!limits.any()) {
+      f->fail_here("expected at least one limit: elongation, tensile_stress, compressive_stress, shear_strain or internal_energy");
+    }
+  }
   spec.finish();
   return m;
 }
@@ -338,6 +354,17 @@ Controls read_controls(JsonObject controls, double end_time) {
     c.hourglass.stiffness = h->number("stiffness", c.hourglass.stiffness, Range::between(0.0, 1.0));
     h->finish();
   }
+  {
+    JsonObject fracture = spec->object_or_empty("fracture");
+    FractureControls& f = c.fracture;
+    f.altitude_ratio = fracture.number("altitude_ratio", f.altitude_ratio, Range{0.0, 1.0, true});
+    f.interior_altitude_ratio = fracture.number("interior_altitude_ratio", f.interior_altitude_ratio, Range{0.0, 1.0, true});
+    f.particles_per_zone = static_cast<int>(fracture.integer("particles_per_zone", f.particles_per_zone, 1, 4));
+    if (f.particles_per_zone != 1 && f.particles_per_zone != 4) fracture.fail("particles_per_zone", "1 or 4");
+    f.time_step_floor_ratio = fracture.number("time_step_floor_ratio", f.time_step_floor_ratio, Range{0.0, 1.0, true});
+    f.particle_travel = fracture.number("particle_travel", f.particle_travel, Range{0.0, 1.0, true});
+    fracture.finish();
+  }
   const std::string form = spec->choice("axisymmetric_form", {"control_volume", "area_weighted"}, "control_volume");
   c.axisymmetric_form = form == "area_weighted" ? AxisymmetricForm::area_weighted : AxisymmetricForm::control_volume;
   spec->finish();
@@ -361,9 +388,24 @@ Index body_index(JsonObject& spec, std::string_view key, const Json& name, const
   spec.fail(key, "body names (strings)");
 }
 
-contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bodies, GeometryKind geometry) {
+contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bodies, GeometryKind geometry,
+                                   const std::vector<bool>& fracturing) {
   contact::ContactSetup setup;
-  if (const Json* pairs = spec.optional_raw("pairs")) {
+  const bool any_fracture = std::find(fracturing.begin(), fracturing.end(), true) != fracturing.end();
+  if (any_fracture && !spec.has("pairs")) {
+    // With fracture on, contact defaults to all pairs and each fracturing body's self-contact (a plug
+    // against its own plate is a self-contact); particles meet everything (DESIGN.md section 2 step 7).
+    Json resolved_pairs = Json::array();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      for (std::size_t j = i; j < bodies.size(); ++j) {
+        if (i == j && !fracturing[i]) continue;
+        setup.pairs.push_back({static_cast<Index>(i), static_cast<Index>(j), 0.0});
+        resolved_pairs.push_back({{"bodies", {bodies[i].name, bodies[j].name}}, {"friction", 0.0}});
+      }
+    }
+    spec.optional_raw("pairs");
+    spec.resolve("pairs", resolved_pairs);
+  } else if (const Json* pairs = spec.optional_raw("pairs")) {
     if (!pairs->is_array()) spec.fail("pairs", "an array of {bodies: [first, second], friction}");
     Json resolved_pairs = Json::array();
     for (std::size_t i = 0; i < pairs->size(); ++i) {
@@ -424,6 +466,7 @@ contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bod
   setup.controls.max_sweeps = static_cast<int>(spec.integer("max_sweeps", setup.controls.max_sweeps, 1, 10000));
   setup.controls.gap_tolerance = spec.number("gap_tolerance", setup.controls.gap_tolerance, Range::positive());
   setup.controls.overlap_fraction = spec.number("overlap_fraction", setup.controls.overlap_fraction, Range{0.0, 1.0, true});
+  setup.controls.overlap_speed = spec.number("overlap_speed", setup.controls.overlap_speed, Range::non_negative());
   spec.finish();
   return setup;
 }
@@ -454,7 +497,9 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
     JsonObject materials = top.object("materials");
     for (const std::string& name : materials.keys()) {
       material_index[name] = static_cast<Index>(setup.materials.size());
-      setup.materials.push_back(read_material(name, materials.object(name)));
+      fracture::FractureLimits limits;
+      setup.materials.push_back(read_material(name, materials.object(name), limits));
+      setup.fracture.push_back(limits);
     }
     if (setup.materials.empty()) materials.fail_here("expected at least one material");
     materials.finish();
@@ -515,7 +560,9 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   top.resolve("bodies", resolved_bodies);
   for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
-  setup.contact = read_contact(top.object_or_empty("contact"), setup.bodies, geometry);
+  std::vector<bool> fracturing;
+  for (const Body& body : setup.bodies) fracturing.push_back(setup.fracture[static_cast<std::size_t>(body.material)].any());
+  setup.contact = read_contact(top.object_or_empty("contact"), setup.bodies, geometry, fracturing);
 
   setup.controls = read_controls(top.object_or_empty("controls"), end_time);
   {

@@ -39,7 +39,8 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file) 
   }
   std::vector<Index> connectivity, offsets, body;
   std::vector<int> types;
-  std::vector<double> density, pressure, energy, sound_speed, deviator, plastic_strain;
+  std::vector<double> density, pressure, energy, sound_speed, deviator, plastic_strain, damage_time;
+  std::vector<int> damaged, criterion;
   for (Index z : zones) {
     for (Index n : mesh.zones.corners[z]) connectivity.push_back(n);
     offsets.push_back(static_cast<Index>(connectivity.size()));
@@ -52,6 +53,9 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file) 
     deviator.insert(deviator.end(), {mesh.zones.deviator_xx[z], mesh.zones.deviator_yy[z],
                                      mesh.zones.deviator_xy[z], mesh.zones.deviator_zz[z]});
     plastic_strain.push_back(mesh.zones.plastic_strain[z]);
+    damaged.push_back(mesh.zones.damaged[z]);
+    damage_time.push_back(mesh.zones.damage_time[z]);
+    criterion.push_back(mesh.zones.damage_criterion[z]);
   }
   std::ostringstream out;
   out.precision(10);
@@ -76,7 +80,42 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file) 
   data_array(out, "Float64", "sound_speed", 1, sound_speed);
   data_array(out, "Float64", "deviatoric_stress_xx_yy_xy_zz", 4, deviator);
   data_array(out, "Float64", "equivalent_plastic_strain", 1, plastic_strain);
+  data_array(out, "UInt8", "damaged", 1, damaged);
+  data_array(out, "Float64", "damage_onset_time", 1, damage_time);
+  data_array(out, "UInt8", "damage_criterion", 1, criterion);
   out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  write_text_atomically(file, out.str());
+}
+
+void write_vtp(const Simulation& simulation, const std::filesystem::path& file) {
+  const Particles& particles = simulation.particles();
+  std::vector<double> points, velocity;
+  std::vector<Index> connectivity, offsets;
+  for (Index i = 0; i < particles.size(); ++i) {
+    points.insert(points.end(), {particles.x[i], particles.y[i], 0.0});
+    velocity.insert(velocity.end(), {particles.u[i], particles.v[i], 0.0});
+    connectivity.push_back(i);
+    offsets.push_back(i + 1);
+  }
+  std::ostringstream out;
+  out.precision(10);
+  out << R"(<?xml version="1.0"?>)" << '\n'
+      << R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)" << '\n'
+      << "  <PolyData>\n"
+      << fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfVerts="{}" NumberOfLines="0" NumberOfStrips="0" NumberOfPolys="0">)",
+                     particles.size(), particles.size())
+      << "\n      <Points>\n";
+  data_array(out, "Float64", "coordinates", 3, points);
+  out << "      </Points>\n      <Verts>\n";
+  data_array(out, "Int32", "connectivity", 1, connectivity);
+  data_array(out, "Int32", "offsets", 1, offsets);
+  out << "      </Verts>\n      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
+  data_array(out, "Float64", "velocity", 3, velocity);
+  data_array(out, "Float64", "radius", 1, particles.radius);
+  data_array(out, "Float64", "mass", 1, particles.mass);
+  data_array(out, "Int32", "body", 1, particles.body);
+  data_array(out, "Float64", "birth_time", 1, particles.birth_time);
+  out << "      </PointData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
   write_text_atomically(file, out.str());
 }
 

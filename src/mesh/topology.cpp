@@ -8,7 +8,7 @@
 namespace krug {
 
 void NodeFields::resize(Index n) {
-  for (auto* f : {&x, &y, &u, &v, &u_old, &v_old, &force_x, &force_y, &mass, &inv_mass_x, &inv_mass_y}) {
+  for (auto* f : {&x, &y, &u, &v, &u_old, &v_old, &force_x, &force_y, &mass, &inv_mass_x, &inv_mass_y, &x0, &y0}) {
     f->resize(n, 0.0);
   }
   body.resize(n, -1);
@@ -20,9 +20,15 @@ void ZoneFields::resize(Index n) {
   active.resize(n, 1);
   for (auto* f : {&mass, &density, &specific_energy, &pressure, &sound_speed, &volume, &area,
                   &viscous_speed, &volume_change, &deviator_xx, &deviator_yy, &deviator_xy,
-                  &deviator_zz, &plastic_strain, &hourglass_x, &hourglass_y}) {
+                  &deviator_zz, &plastic_strain, &hourglass_x, &hourglass_y, &initial_altitude, &stable_time_step}) {
     f->resize(n, 0.0);
   }
+  damaged.resize(n, 0);
+  damage_time.resize(n, -1.0);
+  damage_criterion.resize(n, 0);
+  neighbour.resize(n, ZoneCorners{-1, -1, -1, -1});
+  corner_mass.resize(4 * static_cast<std::size_t>(n), 0.0);
+  neighbours_built = false;
   corner_force.resize(8 * static_cast<std::size_t>(n), 0.0);
   edge_before.resize(n, ZoneCorners{-1, -1, -1, -1});
   edge_after.resize(n, ZoneCorners{-1, -1, -1, -1});
@@ -72,21 +78,23 @@ void build_edge_continuations(Mesh& mesh) {
   const Index n = mesh.zones.size();
   const auto edges = sorted_edges(mesh, 0, n);
   // neighbour[4 z + k]: the zone across local edge k of zone z, or -1.
-  std::vector<Index> neighbour(4 * static_cast<std::size_t>(n), -1);
+  for (Index z = 0; z < n; ++z) mesh.zones.neighbour[z] = ZoneCorners{-1, -1, -1, -1};
+  mesh.zones.neighbours_built = true;
   for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
     const EdgeRecord& e = edges[i];
     const EdgeRecord& f = edges[i + 1];
     if (e.low == f.low && e.high == f.high) {
-      neighbour[4 * e.zone + e.local] = f.zone;
-      neighbour[4 * f.zone + f.local] = e.zone;
+      mesh.zones.neighbour[e.zone][e.local] = f.zone;
+      mesh.zones.neighbour[f.zone][f.local] = e.zone;
     }
   }
+  auto neighbour = [&](std::size_t slot) { return mesh.zones.neighbour[static_cast<Index>(slot / 4)][slot % 4]; };
   for (Index z = 0; z < n; ++z) {
     const ZoneCorners& c = mesh.zones.corners[z];
     for (int k = 0; k < 4; ++k) {
       const Index a = c[k], b = c[quad::next(k)];
-      const Index across_before = neighbour[4 * z + quad::prev(k)];
-      const Index across_after = neighbour[4 * z + quad::next(k)];
+      const Index across_before = neighbour(4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(quad::prev(k)));
+      const Index across_after = neighbour(4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(quad::next(k)));
       mesh.zones.edge_before[z][k] =
           across_before < 0 ? -1 : other_neighbour(mesh.zones.corners[across_before], a, c[quad::prev(k)]);
       mesh.zones.edge_after[z][k] =
@@ -96,18 +104,29 @@ void build_edge_continuations(Mesh& mesh) {
 }
 
 std::vector<BoundarySegment> boundary_segments(const Mesh& mesh, Index zone_begin, Index zone_end) {
-  const auto edges = sorted_edges(mesh, zone_begin, zone_end);
   std::vector<BoundarySegment> segments;
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const bool shared_before = i > 0 && edges[i - 1].low == edges[i].low && edges[i - 1].high == edges[i].high;
-    const bool shared_after =
-        i + 1 < edges.size() && edges[i + 1].low == edges[i].low && edges[i + 1].high == edges[i].high;
-    if (shared_before || shared_after) continue;
-    const ZoneCorners& c = mesh.zones.corners[edges[i].zone];
-    segments.push_back({c[edges[i].local], c[quad::next(edges[i].local)], edges[i].zone});
+  if (!mesh.zones.neighbours_built) {
+    // A mesh fresh from the generators: match edges by sorting.
+    const auto edges = sorted_edges(mesh, zone_begin, zone_end);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const bool shared = (i > 0 && edges[i - 1].low == edges[i].low && edges[i - 1].high == edges[i].high) ||
+                          (i + 1 < edges.size() && edges[i + 1].low == edges[i].low && edges[i + 1].high == edges[i].high);
+      if (shared) continue;
+      const ZoneCorners& c = mesh.zones.corners[edges[i].zone];
+      segments.push_back({c[edges[i].local], c[quad::next(edges[i].local)], edges[i].zone});
+    }
+    std::sort(segments.begin(), segments.end(),
+              [](const BoundarySegment& s, const BoundarySegment& t) { return std::tie(s.zone, s.a) < std::tie(t.zone, t.a); });
+    return segments;
   }
-  std::sort(segments.begin(), segments.end(),
-            [](const BoundarySegment& s, const BoundarySegment& t) { return std::tie(s.zone, s.a) < std::tie(t.zone, t.a); });
+  for (Index z = zone_begin; z < zone_end; ++z) {
+    if (!mesh.zones.active[z]) continue;
+    const ZoneCorners& c = mesh.zones.corners[z];
+    for (int k = 0; k < 4; ++k) {
+      const Index a = c[k], b = c[quad::next(k)];
+      if (a != b && mesh.zones.neighbour[z][k] < 0) segments.push_back({a, b, z});
+    }
+  }
   return segments;
 }
 

@@ -41,12 +41,23 @@ Simulation::Simulation(SimulationSetup setup)
       bodies_(std::move(setup.bodies)),
       constraints_(std::move(setup.constraints)),
       controls_(setup.controls) {
+  fracture_counts_.assign(bodies_.size(), FractureCounts{});
+  for (const Body& body : bodies_) {
+    const auto m = static_cast<std::size_t>(body.material);
+    fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
+    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any();
+  }
+  initialise();
+  if (fracture_enabled_) {
+    // Free elements collide with everything (DESIGN.md section 2 step 7); in RZ the axis holds the rings.
+    setup.contact.particles = true;
+    setup.contact.axis_wall = geometry_ == GeometryKind::axisymmetric;
+  }
   if (!setup.contact.empty()) {
     std::vector<std::pair<Index, Index>> ranges;
     for (const Body& body : bodies_) ranges.emplace_back(body.zone_begin, body.zone_end);
     contact_ = contact::ContactSolver(std::move(setup.contact), mesh_, ranges);
   }
-  initialise();
 }
 
 void Simulation::initialise() {
@@ -73,9 +84,11 @@ void Simulation::initialise() {
       zones.volume[z] = volume;
       zones.mass[z] = zones.density[z] * volume;
       const ZoneCorners& n = zones.corners[z];
+      zones.initial_altitude[z] = quad::smallest_altitude(x, area);
       for (int p = 0; p < 4; ++p) {
         const quad::Corners region = quad::corner_region(x, p);
         const double corner_volume = axisymmetric ? quad::axisymmetric_volume(region) : quad::area(region);
+        zones.corner_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)] = zones.density[z] * corner_volume;
         nodes.mass[n[p]] += zones.density[z] * corner_volume;
         area_mass[static_cast<std::size_t>(n[p])] += zones.density[z] * 0.25 * area;
       }
@@ -88,6 +101,20 @@ void Simulation::initialise() {
     }
   }
 
+  nodes.x0 = nodes.x;
+  nodes.y0 = nodes.y;
+  if (fracture_enabled_) {
+    zones_per_node_.assign(static_cast<std::size_t>(nodes.size()), 0);
+    for (Index z = 0; z < zones.size(); ++z) {
+      if (!zones.active[z]) continue;
+      const ZoneCorners& n = zones.corners[z];
+      for (int p = 0; p < 4; ++p) {
+        if (p > 0 && n[p] == n[p - 1]) continue;
+        if (p == 3 && n[3] == n[0]) continue;
+        ++zones_per_node_[static_cast<std::size_t>(n[p])];
+      }
+    }
+  }
   // Per-DOF inverse masses; the axis holds u_r = 0 in axisymmetric geometry.
   for (Index p = 0; p < nodes.size(); ++p) {
     const double inverse = nodes.mass[p] > 0.0 ? 1.0 / nodes.mass[p] : 0.0;
@@ -154,6 +181,10 @@ void Simulation::step() {
   solve_contact_reactions();
   correct_and_move();
   update_zones();
+  if (fracture_enabled_) {
+    evaluate_fracture();
+    convert_fractured_zones();
+  }
   choose_time_step();
 }
 
@@ -190,6 +221,8 @@ void Simulation::predict_velocities() {
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
   nodes.u_old = nodes.u;
   nodes.v_old = nodes.v;
+  particles_.u_old = particles_.u;  // particles feel no F: u* = u^{n-1/2}
+  particles_.v_old = particles_.v;
   for (Index p = 0; p < nodes.size(); ++p) {
     nodes.u[p] += dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
     nodes.v[p] += dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
@@ -207,7 +240,12 @@ void Simulation::predict_velocities() {
 void Simulation::solve_contact_reactions() {
   if (contact_.empty()) return;  // R = 0: a scene without contact pays nothing here
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
-  last_contact_ = contact_.solve(mesh_, dt_mid, time_step_next_);
+  if (topology_changed_) {
+    contact_.rebuild_boundaries(mesh_);
+    topology_changed_ = false;
+  }
+  last_contact_ = contact_.solve(mesh_, particles_, dt_mid, time_step_next_);
+  ledger_.energy.overlap += last_contact_.overlap_work;
   deepest_contact_gap_ = std::min(deepest_contact_gap_, last_contact_.deepest_gap);
 }
 
@@ -215,8 +253,14 @@ void Simulation::book_contact_work(double dt_mid) {
   // W_contact = sum dt^n R . ubar over the nodes that received a reaction; on a held DOF the
   // boundary cancels R, doing -R u dt (and taking the axial impulse).
   const NodeFields& nodes = mesh_.nodes;
-  for (Index p : contact_.touched_nodes()) {
+  for (Index p : contact_.touched_points()) {
     const Vec2 r = contact_.reaction_force(p);
+    if (contact::ContactSolver::is_particle(p)) {
+      const Index i = contact::ContactSolver::particle_of(p);
+      ledger_.energy.contact += dt_mid * (r.x * 0.5 * (particles_.u_old[i] + particles_.u[i]) +
+                                          r.y * 0.5 * (particles_.v_old[i] + particles_.v[i]));
+      continue;
+    }
     const double ubar = 0.5 * (nodes.u_old[p] + nodes.u[p]);
     const double vbar = 0.5 * (nodes.v_old[p] + nodes.v[p]);
     ledger_.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
@@ -235,6 +279,10 @@ void Simulation::correct_and_move() {
   for (Index p = 0; p < nodes.size(); ++p) {
     nodes.x[p] += dt * nodes.u[p];
     nodes.y[p] += dt * nodes.v[p];
+  }
+  for (Index i = 0; i < particles_.size(); ++i) {
+    particles_.x[i] += dt * particles_.u[i];
+    particles_.y[i] += dt * particles_.v[i];
   }
 }
 
@@ -276,6 +324,10 @@ void Simulation::choose_time_step() {
   time_step_previous_ = time_step_next_;
   const double remaining = controls_.end_time - time_;
   double dt = std::min({stable_time_step_, controls_.time_step_growth * time_step_previous_, controls_.max_time_step});
+  for (Index i = 0; i < particles_.size(); ++i) {  // a particle moves at most a fraction of its radius
+    const double speed = norm(particles_.velocity(i));
+    if (speed > 0.0) dt = std::min(dt, controls_.fracture.particle_travel * particles_.radius[i] / speed);
+  }
   if (remaining > 0.0 && dt < time_step_floor_) {
     fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s", dt, time_step_floor_), controlling_zone_);
   }
@@ -290,10 +342,15 @@ void Simulation::measure_ledger() {
     kinetic += nodes.mass[p] * (nodes.u[p] * nodes.u[p] + nodes.v[p] * nodes.v[p]);
     momentum += nodes.mass[p] * nodes.u[p];
   }
+  double mass = 0.0;
+  for (Index i = 0; i < particles_.size(); ++i) {
+    kinetic += particles_.mass[i] * (particles_.u[i] * particles_.u[i] + particles_.v[i] * particles_.v[i]);
+    momentum += particles_.mass[i] * particles_.u[i];
+    mass += particles_.mass[i];
+  }
   ledger_.energy.kinetic = 0.5 * kinetic;
   ledger_.axial_momentum = momentum;
   ledger_.max_kinetic = std::max(ledger_.max_kinetic, ledger_.energy.kinetic);
-  double mass = 0.0;
   for (Index z = 0; z < mesh_.zones.size(); ++z) {
     if (mesh_.zones.active[z]) mass += mesh_.zones.mass[z];
   }

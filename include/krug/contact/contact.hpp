@@ -8,6 +8,7 @@
 #include "krug/contact/broad_phase.hpp"
 #include "krug/contact/kernels.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/particles/particles.hpp"
 
 namespace krug::contact {
 
@@ -34,14 +35,18 @@ struct ContactControls {
   ReactionMethod method = ReactionMethod::gauss_seidel;
   int max_sweeps = 50;
   double gap_tolerance = 1e-6;  // sweeps stop when no gap is below -tolerance x segment length
-  double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step
+  double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step,
+  double overlap_speed = 1.0;     // and no faster than this (m/s): a fraction per step alone is a speed
+                                  // fraction x depth / dt, which grows without bound as dt shrinks
 };
 
 struct ContactSetup {
   std::vector<BodyPair> pairs;
   std::vector<RigidWall> walls;
   ContactControls controls;
-  bool empty() const { return pairs.empty() && walls.empty(); }
+  bool particles = false;     // free elements may exist: particles against every body, each other and the walls
+  bool axis_wall = false;     // axisymmetric: the axis is a rigid wall at r = radius for particles (rings)
+  bool empty() const { return pairs.empty() && walls.empty() && !particles; }
 };
 
 struct ContactStatistics {
@@ -50,6 +55,7 @@ struct ContactStatistics {
   int sweeps = 0;
   double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
   double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)
+  double overlap_work = 0.0;     // estimated work of removing pre-existing overlap this step (J per radian or per m)
 };
 
 // Per-body boundary description, rebuilt when the topology changes.
@@ -66,18 +72,24 @@ class ContactSolver {
   bool empty() const { return setup_.empty(); }
   void rebuild_boundaries(const Mesh& mesh);
 
-  // Applies the reactions to nodes.u/v (which hold the predicted velocities u*). Records the
-  // reaction force on each touched node for the ledger (reaction_force / touched_nodes).
-  ContactStatistics solve(Mesh& mesh, double dt_mid, double dt_next);
+  // Applies the reactions to the velocities of nodes and particles (which hold the predicted
+  // velocities u*). Records the reaction force on each touched point for the ledger.
+  ContactStatistics solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next);
 
-  const std::vector<Index>& touched_nodes() const { return touched_; }
-  Vec2 reaction_force(Index node) const { return {reaction_x_[node], reaction_y_[node]}; }
+  // Points: a node index p >= 0, or a particle i encoded as -2 - i.
+  static constexpr Index particle_point(Index i) { return -2 - i; }
+  static constexpr bool is_particle(Index point) { return point <= -2; }
+  static constexpr Index particle_of(Index point) { return -2 - point; }
+  const std::vector<Index>& touched_points() const { return touched_; }
+  Vec2 reaction_force(Index point) const;
   const ContactSetup& setup() const { return setup_; }
 
  private:
+  enum class Kind : std::uint8_t { node_segment, particle_segment, particle_particle, wall };
   struct Candidate {
-    Index node, a, b;      // b < 0 with a < 0: a wall (wall index in `wall`)
-    Index wall = -1;
+    Index node, a, b;      // the point; segment nodes, or the other particle's point in a; -1 if none
+    Index wall = -1;       // wall index (Kind::wall; -2 is the axis)
+    Kind kind = Kind::node_segment;
     double friction = 0.0;
     double weight = 1.0;   // 1/2 for two-way pairs in the summation method
     double start_gap = 0.0;
@@ -86,12 +98,30 @@ class ContactSolver {
     double tangent = 0.0;  // accumulated tangential reaction
   };
 
-  void find_candidates(const Mesh& mesh, double dt_next);
-  void add_node_segment_candidates(const Mesh& mesh, const BodyBoundary& slaves, const BodyBoundary& masters,
-                                   double friction, double weight, bool self, double dt_next);
+  struct Geometry {
+    Vec2 normal, tangent;
+    double xi = 0.0, gap = 0.0;
+    bool valid = true;
+  };
+  void find_candidates(double dt_next);
+  void add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters, double friction,
+                                   double weight, bool self, double dt_next);
+  void add_particle_candidates(double dt_next);
+  Geometry contact_geometry(const Candidate& c, double dt_next) const;
   // Returns the gap after this update (for the convergence check).
-  double update(Candidate& c, Mesh& mesh, double dt_mid, double dt_next, bool accumulate_only);
-  void apply(Mesh& mesh, Index node, Vec2 direction, double impulse_force, double dt_mid);
+  double update(Candidate& c, double dt_mid, double dt_next);
+  double overlap_target(const Candidate& c, double dt_next) const;
+  void apply(Index point, Vec2 direction, double force, double dt_mid);
+  Vec2 position(Index point) const;
+  Vec2 velocity(Index point) const;
+  Vec2 predicted(Index point, double dt) const;
+  InverseMass inverse_mass(Index point) const;
+  double radius(Index point) const;
+  void touch(Index point, Vec2 force);
+
+  Mesh* mesh_ = nullptr;
+  Particles* particles_ = nullptr;
+  std::vector<double> particle_reaction_x_, particle_reaction_y_;
 
   ContactSetup setup_;
   std::vector<std::pair<Index, Index>> zone_ranges_;

@@ -23,6 +23,8 @@ struct RunResult {
 
 void write_text_atomically(const std::filesystem::path& file, const std::string& text);
 void write_vtu(const Simulation& simulation, const std::filesystem::path& file);
+// Particles as VTK XML PolyData points (mass, radius, velocity, body of origin).
+void write_vtp(const Simulation& simulation, const std::filesystem::path& file);
 std::string summary_json(const Simulation& simulation, const RunResult& result);
 
 // Writes history rows and snapshots while a run goes on, and the final files when it ends.
@@ -47,6 +49,7 @@ class RunRecorder {
   double next_history_time_ = 0.0;
   double next_snapshot_time_ = 0.0;
   std::vector<std::pair<double, std::string>> snapshots_;  // time, file relative to directory_
+  std::vector<std::pair<double, std::string>> particle_snapshots_;
 };
 
 }  // namespace krug::io

@@ -23,7 +23,8 @@ struct NodeFields {
   std::vector<double> u, v;                      // velocity at t^{n+1/2} after a step (m/s)
   std::vector<double> u_old, v_old;              // velocity at t^{n-1/2}, kept during a step (m/s)
   std::vector<double> force_x, force_y;          // F^n from the zones (N per radian or per m)
-  std::vector<double> mass;                      // fixed nodal mass (kg per radian or per m)
+  std::vector<double> mass;                      // nodal mass (kg per radian or per m); fixed until a zone converts
+  std::vector<double> x0, y0;                    // initial position (m), for the deformation of fracture criteria
   std::vector<double> inv_mass_x, inv_mass_y;    // per-DOF inverse mass; 0 where a condition fixes it
   std::vector<Index> body;
 
@@ -54,6 +55,15 @@ struct ZoneFields {
   // Nodes continuing each edge through the neighbouring zones (for the viscosity limiter): the edge
   // (p, p+1) continues backwards as (before[p], p) and forwards as (p+1, after[p]); -1 at a boundary.
   std::vector<ZoneCorners> edge_before, edge_after;
+  std::vector<ZoneCorners> neighbour;            // zone across each edge (p, p+1); -1 on a boundary
+  bool neighbours_built = false;                 // set by build_edge_continuations, cleared by resize
+  std::vector<double> corner_mass;               // 4 per zone: the zone's share of each corner node's mass
+  // Fracture (DESIGN.md section 2 step 6): permanent damage, when and why it started.
+  std::vector<std::uint8_t> damaged;             // 0 intact, 1 damaged
+  std::vector<double> damage_time;               // s; -1 while intact
+  std::vector<std::uint8_t> damage_criterion;    // fracture::Criterion that fired
+  std::vector<double> initial_altitude;          // smallest altitude of the initial shape (m)
+  std::vector<double> stable_time_step;          // the zone's own stable step from the last update (s)
 
   Index size() const { return static_cast<Index>(corners.size()); }
   void resize(Index n);
@@ -79,7 +89,8 @@ struct BoundarySegment {
 // Recomputes edge_before/edge_after for all zones from the connectivity of active zones.
 void build_edge_continuations(Mesh& mesh);
 
-// Boundary segments of the active zones in [zone_begin, zone_end), in zone order.
+// Boundary segments of the active zones in [zone_begin, zone_end), in zone order: edges without a
+// neighbour (zones.neighbour, kept up to date as zones leave the grid).
 std::vector<BoundarySegment> boundary_segments(const Mesh& mesh, Index zone_begin, Index zone_end);
 
 }  // namespace krug

@@ -27,6 +27,15 @@ enum class AxisymmetricForm {
   area_weighted    // Wilkins' area-weighted form: better symmetry on polar meshes, not exactly conservative
 };
 
+// Fracture and conversion to free elements (DESIGN.md section 2 steps 6-7): numerical parameters.
+struct FractureControls {
+  double altitude_ratio = 0.25;            // f_h: fully fractured when the smallest altitude < f_h x initial
+  double interior_altitude_ratio = 0.1;    // f_i: a damaged interior zone this thin converts too
+  int particles_per_zone = 1;              // 1 (radius sqrt(A)/2) or 4 (2x2, corner masses, node velocities)
+  double time_step_floor_ratio = 0.2;      // damaged zones never drive dt below this x the median zone dt
+  double particle_travel = 0.5;            // a particle moves at most this fraction of its radius per step
+};
+
 struct Controls {
   double end_time = 0.0;                 // s
   double cfl = 0.5;                      // fraction of the zone's stable step
@@ -39,6 +48,7 @@ struct Controls {
   ViscosityParams viscosity;
   HourglassParams hourglass;
   AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
+  FractureControls fracture;
 };
 
 }  // namespace krug

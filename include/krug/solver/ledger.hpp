@@ -18,6 +18,7 @@ struct EnergyLedger {
   double viscous = 0.0;     // artificial-viscosity work (part of IE)
   double hourglass = 0.0;   // hourglass work (part of IE)
   double contact = 0.0;     // W_contact (<= 0 apart from booked overlap work)
+  double overlap = 0.0;     // estimated part of W_contact that removed pre-existing overlap (>= 0)
   double converted = 0.0;   // energy removed with zones converted to particles
   double boundary = 0.0;    // W_boundary, work done on the system by boundary conditions
 

@@ -6,6 +6,8 @@
 
 #include "krug/contact/contact.hpp"
 #include "krug/core/geometry_kind.hpp"
+#include "krug/fracture/criteria.hpp"
+#include "krug/particles/particles.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/solver/controls.hpp"
@@ -37,7 +39,23 @@ struct SimulationSetup {
   std::vector<Body> bodies;
   std::vector<NodeConstraint> constraints;
   contact::ContactSetup contact;
+  std::vector<fracture::FractureLimits> fracture;  // per material; empty or limits.any() == false: no fracture
   Controls controls;
+};
+
+struct Fragment {
+  double mass = 0.0;   // whole body (x 2 pi in RZ)
+  Vec2 velocity;       // mass-weighted
+  Vec2 centroid;
+  Index zones = 0;
+};
+
+// Fracture counters of one body.
+struct FractureCounts {
+  long damaged = 0;               // zones damaged so far
+  long converted = 0;             // zones converted to particles
+  long interior_conversions = 0;  // of which converted away from the surface (f_i, inverted corner, dt floor)
+  double converted_mass = 0.0;    // per radian or per m
 };
 
 // Per-body summary figures (whole body: x 2 pi in RZ).
@@ -80,6 +98,11 @@ class Simulation {
   void cap_next_time_step(double dt);
 
   BodySummary summarise(const Body& body) const;
+  // Connected pieces of a body's remaining zones (by shared edges), heaviest first.
+  std::vector<Fragment> fragments(const Body& body) const;
+  const Particles& particles() const { return particles_; }
+  const FractureCounts& fracture_counts(Index body) const { return fracture_counts_[static_cast<std::size_t>(body)]; }
+  bool fracture_enabled() const { return fracture_enabled_; }
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
  private:
@@ -89,11 +112,15 @@ class Simulation {
   void solve_contact_reactions(); // 3. R from predicted gaps (no contact pairs yet)
   void correct_and_move();        // 4. u^{n+1/2} = u* + dt^n R / M, x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
+  void evaluate_fracture();       // 6. criteria (1) on intact zones; damage is permanent
+  void convert_fractured_zones(); // 7. fully fractured surface zones -> particles (one layer per step)
   void choose_time_step();        // 8. dt^{n+3/2}
 
   void initialise();
   void measure_ledger();
   void book_contact_work(double dt_mid);
+  void convert_zone(Index zone, bool interior);
+  bool face_is_free(Index zone, int edge) const;
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
   GeometryKind geometry_;
@@ -103,6 +130,12 @@ class Simulation {
   std::vector<NodeConstraint> constraints_;
   std::vector<std::uint8_t> held_x_, held_y_;  // per node: DOF held by a condition
   contact::ContactSolver contact_;
+  Particles particles_;
+  std::vector<fracture::FractureLimits> fracture_limits_;  // per body
+  std::vector<FractureCounts> fracture_counts_;           // per body
+  std::vector<Index> zones_per_node_;                     // active zones touching each node (fracture only)
+  bool fracture_enabled_ = false;
+  bool topology_changed_ = false;
   contact::ContactStatistics last_contact_;
   double deepest_contact_gap_ = 0.0;
   Controls controls_;

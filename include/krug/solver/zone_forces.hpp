@@ -175,8 +175,9 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
       double bb = 0.0;
       for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
-      zones.hourglass_x[z] += params.hourglass.stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.x;
-      zones.hourglass_y[z] += params.hourglass.stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.y;
+      const double stiffness = zones.damaged[z] ? 0.0 : params.hourglass.stiffness;  // damaged: no shear stiffness
+      zones.hourglass_x[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.x;
+      zones.hourglass_y[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.y;
       const double viscous = params.hourglass.viscous * rho * c * std::sqrt(area);
       const double scale = axisymmetric && !area_weighted ? mean_radius : 1.0;
       const Vec2 generalised{scale * (viscous * rate.x + zones.hourglass_x[z]),

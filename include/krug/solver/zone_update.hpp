@@ -94,7 +94,9 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
     const double old_volume = zones.volume[z];
     const double density = zones.mass[z] / volume;
 
+    const bool damaged = zones.damaged[z] != 0;
     if constexpr (has_strength) {
+      if (!damaged) {  // a damaged zone keeps s = 0
       // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
       const std::array<Vec2, 4> u{nodes.velocity(n[0]), nodes.velocity(n[1]), nodes.velocity(n[2]), nodes.velocity(n[3])};
       StrainRate rate;
@@ -114,10 +116,12 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       zones.deviator_zz[z] = plastic.deviator.zz;
       zones.plastic_strain[z] += plastic.plastic_strain_increment;
       result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
+      }
     }
-    const double pressure = eos.pressure(density, energy);
-    const double wave_speed_squared =
-        eos.sound_speed_squared(density, energy, pressure) + 4.0 * params.shear_modulus / (3.0 * density);
+    // A damaged zone resists only volumetric compression (DESIGN.md section 2 step 6).
+    const double pressure = damaged ? std::max(eos.pressure(density, energy), 0.0) : eos.pressure(density, energy);
+    const double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure) +
+                                      (damaged ? 0.0 : 4.0 * params.shear_modulus / (3.0 * density));
     const double sound_speed = std::sqrt(std::max(wave_speed_squared, 0.0));
 
     zones.area[z] = area;
@@ -137,6 +141,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
     if (zones.volume_change[z] > 0.0) {
       dt = std::min(dt, params.max_volume_change * params.time_step_next / zones.volume_change[z]);
     }
+    zones.stable_time_step[z] = dt;
     if (dt < result.stable_time_step) {
       result.stable_time_step = dt;
       result.controlling_zone = z;

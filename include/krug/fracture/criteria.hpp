@@ -1,0 +1,136 @@
+#pragma once
+// Fracture criteria (1) of Gulidov & Shabalin (1996), point-wise, and the damaged-state rules of
+// DESIGN.md section 2 step 6. A criterion is enabled only when its limit is given.
+//
+//   |eps_1| < eps_*     eps_1 = lambda_max - 1, the largest principal elongation
+//   |sigma_1| < sigma_* sigma_1 = the largest principal value of s - p I (no artificial viscosity);
+//                       a compressive limit for brittle materials on the smallest principal value
+//   |gamma_1| < gamma_* gamma_1 = lambda_max - lambda_min, the largest shear strain
+//   e < e_*             specific internal energy
+//
+// lambda are the three principal stretches of the zone's deformation from its initial shape: the
+// two in-plane ones from F = dx/dX (one-point quadrature on the quad) and the hoop stretch r/R in
+// axisymmetric geometry (1 in planar strain). Once any limit is exceeded the zone is damaged for
+// good: it resists only volumetric compression (s = 0, p = max(p, 0)). Loosening chi = 1 - rho/rho0
+// for rho < rho0 measures how far it may open; chi > chi_* (or a collapsed altitude) means fully fractured.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+
+#include "krug/core/vec2.hpp"
+
+namespace krug::fracture {
+
+enum class Criterion : std::uint8_t { none = 0, elongation, tensile_stress, compressive_stress, shear_strain, energy };
+
+constexpr std::string_view criterion_name(Criterion c) {
+  switch (c) {
+    case Criterion::elongation: return "elongation";
+    case Criterion::tensile_stress: return "tensile_stress";
+    case Criterion::compressive_stress: return "compressive_stress";
+    case Criterion::shear_strain: return "shear_strain";
+    case Criterion::energy: return "internal_energy";
+    case Criterion::none: break;
+  }
+  return "none";
+}
+
+constexpr double disabled = std::numeric_limits<double>::infinity();
+
+// Limits of one material; infinity = criterion off.
+struct FractureLimits {
+  double elongation = disabled;          // eps_* (-)
+  double tensile_stress = disabled;      // sigma_* (Pa), on the largest principal stress
+  double compressive_stress = disabled;  // (Pa), on minus the smallest principal stress
+  double shear_strain = disabled;        // gamma_* (-)
+  double internal_energy = disabled;     // e_* (J/kg)
+  double loosening = 0.03;               // chi_* (-)
+
+  bool any() const {
+    return std::isfinite(elongation) || std::isfinite(tensile_stress) || std::isfinite(compressive_stress) ||
+           std::isfinite(shear_strain) || std::isfinite(internal_energy);
+  }
+};
+
+// Principal stretches (in-plane pair and the out-of-plane/hoop one).
+struct Stretches {
+  double in_plane_max = 1.0;
+  double in_plane_min = 1.0;
+  double out_of_plane = 1.0;
+  double largest() const { return std::max(in_plane_max, out_of_plane); }
+  double smallest() const { return std::min(in_plane_min, out_of_plane); }
+};
+
+// In-plane principal stretches of the 2x2 deformation gradient F: the square roots of the
+// eigenvalues of C = F^T F.
+inline Stretches principal_stretches(double f11, double f12, double f21, double f22, double out_of_plane) {
+  const double c11 = f11 * f11 + f21 * f21;
+  const double c22 = f12 * f12 + f22 * f22;
+  const double c12 = f11 * f12 + f21 * f22;
+  const double mean = 0.5 * (c11 + c22);
+  const double radius = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
+  Stretches s;
+  s.in_plane_max = std::sqrt(std::max(mean + radius, 0.0));
+  s.in_plane_min = std::sqrt(std::max(mean - radius, 0.0));
+  s.out_of_plane = out_of_plane;
+  return s;
+}
+
+// Deformation gradient of a quad by one-point quadrature: F = (1/A0) sum_p x_p (x) dA0/dX_p, with the
+// initial configuration's area gradients.
+inline void deformation_gradient(const std::array<Vec2, 4>& current, const std::array<Vec2, 4>& initial_gradient,
+                                 double initial_area, double& f11, double& f12, double& f21, double& f22) {
+  f11 = f12 = f21 = f22 = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    f11 += current[p].x * initial_gradient[p].x;
+    f12 += current[p].x * initial_gradient[p].y;
+    f21 += current[p].y * initial_gradient[p].x;
+    f22 += current[p].y * initial_gradient[p].y;
+  }
+  const double inv = 1.0 / initial_area;
+  f11 *= inv;
+  f12 *= inv;
+  f21 *= inv;
+  f22 *= inv;
+}
+
+// Principal values of the Cauchy stress s - p I (in-plane pair from the 2x2 block, plus the zz one).
+struct PrincipalStress {
+  double largest = 0.0;
+  double smallest = 0.0;
+};
+
+inline PrincipalStress principal_stress(double sxx, double syy, double sxy, double szz, double pressure) {
+  const double mean = 0.5 * (sxx + syy) - pressure;
+  const double radius = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+  const double zz = szz - pressure;
+  return {std::max(mean + radius, zz), std::min(mean - radius, zz)};
+}
+
+// The first criterion exceeded, in the order of (1), or none.
+inline Criterion exceeded(const FractureLimits& limits, const Stretches& stretch, const PrincipalStress& stress,
+                          double specific_energy) {
+  if (stretch.largest() - 1.0 > limits.elongation) return Criterion::elongation;
+  if (stress.largest > limits.tensile_stress) return Criterion::tensile_stress;
+  if (-stress.smallest > limits.compressive_stress) return Criterion::compressive_stress;
+  if (stretch.largest() - stretch.smallest() > limits.shear_strain) return Criterion::shear_strain;
+  if (specific_energy > limits.internal_energy) return Criterion::energy;
+  return Criterion::none;
+}
+
+// Loosening chi = 1 - rho/rho0 where the material has expanded below its reference density, else 0.
+inline double loosening(double density, double reference_density) {
+  return density < reference_density ? 1.0 - density / reference_density : 0.0;
+}
+
+// Fully fractured: damaged and loosened beyond chi_*, or its smallest altitude collapsed below
+// f_h times the initial one (a sheared quad keeps its area, so chi alone would never trigger).
+inline bool fully_fractured(double chi, double chi_limit, double altitude, double initial_altitude,
+                            double altitude_ratio) {
+  return chi > chi_limit || altitude < altitude_ratio * initial_altitude;
+}
+
+}  // namespace krug::fracture

@@ -1,0 +1,239 @@
+// Steps 6 and 7 of the time step (DESIGN.md section 2): fracture criteria on intact zones, and the
+// conversion of fully fractured zones into free elements (Gulidov & Shabalin 1996).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "krug/solver/simulation.hpp"
+
+namespace krug {
+
+namespace {
+
+bool has_inverted_corner(const quad::Corners& x, const ZoneCorners& n) {
+  for (int p = 0; p < 4; ++p) {
+    if (n[p] == n[quad::next(p)] || n[p] == n[quad::prev(p)]) continue;  // the repeated corner of a triangle
+    if (cross(x[quad::next(p)] - x[p], x[quad::prev(p)] - x[p]) <= 0.0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void Simulation::evaluate_fracture() {
+  const bool axisymmetric = geometry_ == GeometryKind::axisymmetric;
+  ZoneFields& zones = mesh_.zones;
+  const NodeFields& nodes = mesh_.nodes;
+  const double now = time_ + time_step_next_;  // the state just computed is at t^{n+1}
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const fracture::FractureLimits& limits = fracture_limits_[b];
+    if (!limits.any()) continue;
+    const Body& body = bodies_[b];
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      if (!zones.active[z] || zones.damaged[z]) continue;
+      const ZoneCorners& n = zones.corners[z];
+      const quad::Corners x = mesh_.corner_positions(z);
+      const quad::Corners x0{Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
+                             Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
+      const double initial_area = quad::area(x0);
+      double f11, f12, f21, f22;
+      fracture::deformation_gradient(x, quad::area_gradient(x0), initial_area, f11, f12, f21, f22);
+      // Hoop stretch r/R with the zone's mean radii V/A (axisymmetric); 1 in planar strain.
+      const double hoop = axisymmetric ? (zones.volume[z] / zones.area[z]) / (quad::axisymmetric_volume(x0) / initial_area) : 1.0;
+      const fracture::Stretches stretch = fracture::principal_stretches(f11, f12, f21, f22, hoop);
+      const fracture::PrincipalStress stress = fracture::principal_stress(
+          zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z], zones.pressure[z]);
+      const fracture::Criterion fired = fracture::exceeded(limits, stretch, stress, zones.specific_energy[z]);
+      if (fired == fracture::Criterion::none) continue;
+      zones.damaged[z] = 1;
+      zones.damage_time[z] = now;
+      zones.damage_criterion[z] = static_cast<std::uint8_t>(fired);
+      zones.deviator_xx[z] = zones.deviator_yy[z] = zones.deviator_xy[z] = zones.deviator_zz[z] = 0.0;
+      zones.pressure[z] = std::max(zones.pressure[z], 0.0);
+      zones.hourglass_x[z] = zones.hourglass_y[z] = 0.0;
+      ++fracture_counts_[b].damaged;
+    }
+  }
+}
+
+bool Simulation::face_is_free(Index zone, int edge) const {
+  const ZoneCorners& n = mesh_.zones.corners[zone];
+  const Index a = n[edge], b = n[quad::next(edge)];
+  if (a == b || mesh_.zones.neighbour[zone][edge] >= 0) return false;
+  // Not on the axis, a symmetry plane or a fixed rim: both ends held in the same direction.
+  const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+  return !((held_x_[ua] && held_x_[ub]) || (held_y_[ua] && held_y_[ub]));
+}
+
+void Simulation::convert_fractured_zones() {
+  ZoneFields& zones = mesh_.zones;
+  const FractureControls& fc = controls_.fracture;
+  // Median zone time step, for the floor below which damaged zones convert instead of driving dt.
+  std::vector<double> steps;
+  bool any_damaged = false;
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (!zones.active[z]) continue;
+    steps.push_back(zones.stable_time_step[z]);
+    any_damaged = any_damaged || zones.damaged[z];
+  }
+  if (!any_damaged) return;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double median_step = steps[steps.size() / 2];
+
+  // Choose the whole layer first, then convert: one boundary layer per step.
+  std::vector<std::pair<Index, bool>> chosen;  // zone, interior rule
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!fracture_limits_[b].any()) continue;
+    const Body& body = bodies_[b];
+    const double reference_density = materials_[static_cast<std::size_t>(body.material)].reference_density;
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      if (!zones.active[z] || !zones.damaged[z]) continue;
+      const quad::Corners x = mesh_.corner_positions(z);
+      const double altitude = quad::smallest_altitude(x, zones.area[z]);
+      const double chi = fracture::loosening(zones.density[z], reference_density);
+      const bool fully = fracture::fully_fractured(chi, fracture_limits_[b].loosening, altitude,
+                                                   zones.initial_altitude[z], fc.altitude_ratio);
+      bool on_surface = false;
+      for (int k = 0; k < 4 && !on_surface; ++k) on_surface = face_is_free(z, k);
+      if (fully && on_surface) {
+        chosen.emplace_back(z, false);
+      } else if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
+                 has_inverted_corner(x, zones.corners[z]) ||
+                 zones.stable_time_step[z] < fc.time_step_floor_ratio * median_step) {
+        chosen.emplace_back(z, true);  // a documented deviation from the paper, counted
+      }
+    }
+  }
+  if (chosen.empty()) return;
+  for (const auto& [z, interior] : chosen) convert_zone(z, interior);
+  topology_changed_ = true;
+  // The step limit now comes from the zones that remain.
+  stable_time_step_ = std::numeric_limits<double>::infinity();
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (zones.active[z] && zones.stable_time_step[z] < stable_time_step_) {
+      stable_time_step_ = zones.stable_time_step[z];
+      controlling_zone_ = z;
+    }
+  }
+  measure_ledger();
+}
+
+void Simulation::convert_zone(Index z, bool interior) {
+  ZoneFields& zones = mesh_.zones;
+  NodeFields& nodes = mesh_.nodes;
+  const ZoneCorners n = zones.corners[z];
+  const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
+  const double mass = zones.mass[z];
+  const quad::Corners x = mesh_.corner_positions(z);
+  const double area = zones.area[z];
+
+  double corner_total = 0.0;
+  Vec2 momentum;
+  for (int p = 0; p < 4; ++p) {
+    corner_total += corner_mass[p];
+    momentum += corner_mass[p] * nodes.velocity(n[p]);
+  }
+  const Vec2 mean_velocity = (1.0 / corner_total) * momentum;
+  const std::int32_t origin = nodes.body[n[0]];
+  double kinetic_defect = 0.0;
+  if (controls_.fracture.particles_per_zone == 4) {
+    // 2 x 2 sub-particles: each corner's mass with its node's velocity (kinetic energy exact).
+    for (int p = 0; p < 4; ++p) {
+      const quad::Corners region = quad::corner_region(x, p);
+      particles_.add(quad::centre(region), nodes.velocity(n[p]), corner_mass[p] * mass / corner_total,
+                     0.25 * std::sqrt(area), origin, time_ + time_step_next_);
+    }
+  } else {
+    // One particle inscribed in the zone: radius sqrt(A)/2, the zone's mass and momentum.
+    for (int p = 0; p < 4; ++p) {
+      const Vec2 d = nodes.velocity(n[p]) - mean_velocity;
+      kinetic_defect += 0.5 * corner_mass[p] * dot(d, d);
+    }
+    particles_.add(quad::centre(x), mean_velocity, mass, 0.5 * std::sqrt(area), origin, time_ + time_step_next_);
+  }
+  ledger_.energy.converted += mass * zones.specific_energy[z] + kinetic_defect;
+  ledger_.energy.internal -= mass * zones.specific_energy[z];
+
+  // The zone's share of each corner node leaves with it; a node left without zones is removed.
+  for (int p = 0; p < 4; ++p) {
+    nodes.mass[n[p]] -= corner_mass[p];
+  }
+  for (int p = 0; p < 4; ++p) {
+    if (p > 0 && n[p] == n[p - 1]) continue;
+    if (p == 3 && n[3] == n[0]) continue;
+    const auto node = static_cast<std::size_t>(n[p]);
+    if (--zones_per_node_[node] == 0) nodes.mass[n[p]] = 0.0;
+    const double inverse = nodes.mass[n[p]] > 0.0 ? 1.0 / nodes.mass[n[p]] : 0.0;
+    nodes.inv_mass_x[n[p]] = held_x_[node] ? 0.0 : inverse;
+    nodes.inv_mass_y[n[p]] = held_y_[node] ? 0.0 : inverse;
+  }
+  zones.active[z] = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Index w = zones.neighbour[z][k];
+    if (w < 0) continue;
+    for (int j = 0; j < 4; ++j) {
+      if (zones.neighbour[w][j] == z) zones.neighbour[w][j] = -1;
+    }
+    zones.neighbour[z][k] = -1;
+  }
+  const std::size_t b = static_cast<std::size_t>(zones.body[z]);
+  ++fracture_counts_[b].converted;
+  if (interior) ++fracture_counts_[b].interior_conversions;
+  fracture_counts_[b].converted_mass += mass;
+}
+
+std::vector<Fragment> Simulation::fragments(const Body& body) const {
+  const ZoneFields& zones = mesh_.zones;
+  const NodeFields& nodes = mesh_.nodes;
+  const Index count = body.zone_end - body.zone_begin;
+  std::vector<Index> parent(static_cast<std::size_t>(count));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+      i = parent[static_cast<std::size_t>(i)];
+    }
+    return i;
+  };
+  for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+    if (!zones.active[z]) continue;
+    for (int k = 0; k < 4; ++k) {
+      const Index w = zones.neighbour[z][k];
+      if (w >= 0 && zones.active[w]) {
+        const Index a = find(z - body.zone_begin), c = find(w - body.zone_begin);
+        if (a != c) parent[static_cast<std::size_t>(std::max(a, c))] = std::min(a, c);
+      }
+    }
+  }
+  std::vector<Index> slot(static_cast<std::size_t>(count), -1);
+  std::vector<Fragment> pieces;
+  std::vector<double> moment_mass;
+  for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+    if (!zones.active[z]) continue;
+    const Index root = find(z - body.zone_begin);
+    Index& s = slot[static_cast<std::size_t>(root)];
+    if (s < 0) {
+      s = static_cast<Index>(pieces.size());
+      pieces.emplace_back();
+    }
+    Fragment& f = pieces[static_cast<std::size_t>(s)];
+    const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
+    for (int p = 0; p < 4; ++p) {
+      const Index node = zones.corners[z][p];
+      f.velocity += corner_mass[p] * nodes.velocity(node);
+      f.centroid += corner_mass[p] * nodes.position(node);
+    }
+    f.mass += zones.mass[z];
+    ++f.zones;
+  }
+  for (Fragment& f : pieces) {
+    f.velocity = (1.0 / f.mass) * f.velocity;
+    f.centroid = (1.0 / f.mass) * f.centroid;
+    f.mass *= whole_body_factor();
+  }
+  std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
+  return pieces;
+}
+
+}  // namespace krug
