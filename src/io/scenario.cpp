@@ -14,6 +14,7 @@
 #include "json_reader.hpp"
 #include "krug/core/error.hpp"
 #include "krug/mesh/generators.hpp"
+#include "krug/mesh/nosed_cylinder.hpp"
 
 namespace krug::io {
 
@@ -146,7 +147,7 @@ struct MeshedBody {
 
 MeshedBody read_mesh(JsonObject spec, Mesh& mesh, Index body, GeometryKind geometry) {
   const AxisNames names = axis_names(geometry);
-  const std::string type = spec.choice("type", {"rectangle", "sector"});
+  const std::string type = spec.choice("type", {"rectangle", "sector", "nosed_cylinder"});
   generate::PositionMap map;
   if (spec.has("map")) {
     auto fields = read_field_pair(spec, "map", names, "an array of two expressions [new first, new second]");
@@ -163,6 +164,26 @@ MeshedBody read_mesh(JsonObject spec, Mesh& mesh, Index body, GeometryKind geome
     result.patch = generate::rectangle(mesh, first, second, body, map);
     result.side_names = {{names.first + "_min", "i_min"}, {names.first + "_max", "i_max"},
                          {names.second + "_min", "j_min"}, {names.second + "_max", "j_max"}};
+  } else if (type == "nosed_cylinder") {
+    // A projectile or rod along the axis: flat, hemispherical or tangent-ogive nose, O-grid at the nose.
+    generate::NosedCylinderParams p;
+    p.radius = spec.number("radius", Range::positive());
+    p.length = spec.number("length", Range::positive());
+    const std::string nose = spec.choice("nose", {"flat", "hemispherical", "ogive"}, "hemispherical");
+    p.nose = nose == "flat" ? generate::NoseShape::flat
+             : nose == "ogive" ? generate::NoseShape::ogive : generate::NoseShape::hemispherical;
+    p.nose_length = spec.number("nose_length", 0.0, Range::non_negative());
+    p.ogive_calibers = spec.number("ogive_calibers", 0.0, Range::non_negative());
+    p.tip_position = spec.number("tip", 0.0);
+    const std::string direction = spec.choice("points", {"+" + names.first, "-" + names.first}, "+" + names.first);
+    p.direction = direction[0] == '+' ? 1 : -1;
+    p.radial_zones = static_cast<int>(spec.integer("radial_zones", 10, 1, 100000));
+    p.core_zones = static_cast<int>(spec.integer("core_zones", 0, 0, 100000));
+    p.nose_zones = static_cast<int>(spec.integer("nose_zones", 0, 0, 100000));
+    p.shank_zones = static_cast<int>(spec.integer("shank_zones", 0, 0, 1000000));
+    p.shank_ratio = spec.number("shank_ratio", 1.0, Range{0.0, 100.0, true});
+    result.patch = generate::nosed_cylinder(mesh, p, body);
+    for (const char* side : {"axis", "nose", "side", "rear"}) result.side_names[side] = side;
   } else {
     const auto radii = read_axis(spec.object("radius"));
     const auto angles = read_axis(spec.object("angle"), std::numbers::pi / 180.0);

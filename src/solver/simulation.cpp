@@ -192,6 +192,46 @@ bool Simulation::finished() const {
   return time_ >= controls_.end_time * (1.0 - 1e-12) || cycle_ >= controls_.max_cycles;
 }
 
+SimulationState Simulation::state() const {
+  SimulationState s;
+  s.mesh = mesh_;
+  s.particles = particles_;
+  s.ledger = ledger_;
+  s.fracture_counts = fracture_counts_;
+  s.zones_per_node = zones_per_node_;
+  s.time = time_;
+  s.cycle = cycle_;
+  s.zone_cycles = zone_cycles_;
+  s.time_step_previous = time_step_previous_;
+  s.time_step_next = time_step_next_;
+  s.time_step_floor = time_step_floor_;
+  s.stable_time_step = stable_time_step_;
+  s.controlling_zone = controlling_zone_;
+  s.deepest_contact_gap = deepest_contact_gap_;
+  return s;
+}
+
+void Simulation::restore(SimulationState s) {
+  if (s.mesh.nodes.size() != mesh_.nodes.size() || s.mesh.zones.size() != mesh_.zones.size()) {
+    throw InputError("restart: the checkpoint does not belong to this scenario (mesh sizes differ)");
+  }
+  mesh_ = std::move(s.mesh);
+  particles_ = std::move(s.particles);
+  ledger_ = s.ledger;
+  fracture_counts_ = std::move(s.fracture_counts);
+  zones_per_node_ = std::move(s.zones_per_node);
+  time_ = s.time;
+  cycle_ = s.cycle;
+  zone_cycles_ = s.zone_cycles;
+  time_step_previous_ = s.time_step_previous;
+  time_step_next_ = s.time_step_next;
+  time_step_floor_ = s.time_step_floor;
+  stable_time_step_ = s.stable_time_step;
+  controlling_zone_ = s.controlling_zone;
+  deepest_contact_gap_ = s.deepest_contact_gap;
+  topology_changed_ = true;  // contact boundaries are rebuilt from the restored connectivity
+}
+
 void Simulation::cap_next_time_step(double dt) {
   time_step_next_ = std::min(time_step_next_, dt);
 }

@@ -67,6 +67,24 @@ struct BodySummary {
   Index zones = 0; // active zones
 };
 
+// Everything that changes during a run: with the setup it came from, it restarts a run exactly.
+struct SimulationState {
+  Mesh mesh;
+  Particles particles;
+  Ledger ledger;
+  std::vector<FractureCounts> fracture_counts;
+  std::vector<Index> zones_per_node;
+  double time = 0.0;
+  long cycle = 0;
+  long zone_cycles = 0;
+  double time_step_previous = 0.0;
+  double time_step_next = 0.0;
+  double time_step_floor = 0.0;
+  double stable_time_step = 0.0;
+  Index controlling_zone = -1;
+  double deepest_contact_gap = 0.0;
+};
+
 class Simulation {
  public:
   explicit Simulation(SimulationSetup setup);
@@ -93,6 +111,11 @@ class Simulation {
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
   double deepest_contact_gap() const { return deepest_contact_gap_; }
+
+  // Checkpoint and restart: state() after any step; restore() on a Simulation built from the same
+  // setup continues the run exactly as if it had not stopped.
+  SimulationState state() const;
+  void restore(SimulationState state);
 
   // For tests of the time integration: cap the next step (the CFL and growth limits still apply).
   void cap_next_time_step(double dt);
