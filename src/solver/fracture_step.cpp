@@ -77,13 +77,28 @@ void Simulation::convert_fractured_zones() {
     steps.push_back(zones.stable_time_step[z]);
     any_damaged = any_damaged || zones.damaged[z];
   }
-  if (!any_damaged) return;
-  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-  const double median_step = steps[steps.size() / 2];
+  std::vector<std::pair<Index, ConversionRule>> chosen;
+  // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
+  for (const Body& body : bodies_) {
+    if (body.erosion_altitude_ratio <= 0.0) continue;
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      if (!zones.active[z] || zones.damaged[z]) continue;
+      const quad::Corners x = mesh_.corner_positions(z);
+      if (quad::smallest_altitude(x, zones.area[z]) < body.erosion_altitude_ratio * zones.initial_altitude[z] ||
+          has_inverted_corner(x, zones.corners[z])) {
+        chosen.emplace_back(z, ConversionRule::erosion);
+      }
+    }
+  }
+  if (!any_damaged && chosen.empty()) return;
+  double median_step = 0.0;
+  if (any_damaged) {
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    median_step = steps[steps.size() / 2];
+  }
 
   // Choose the whole layer first, then convert: one boundary layer per step.
-  std::vector<std::pair<Index, bool>> chosen;  // zone, interior rule
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+  for (std::size_t b = 0; b < bodies_.size() && any_damaged; ++b) {
     if (!fracture_limits_[b].any()) continue;
     const Body& body = bodies_[b];
     const double reference_density = materials_[static_cast<std::size_t>(body.material)].reference_density;
@@ -97,16 +112,16 @@ void Simulation::convert_fractured_zones() {
       bool on_surface = false;
       for (int k = 0; k < 4 && !on_surface; ++k) on_surface = face_is_free(z, k);
       if (fully && on_surface) {
-        chosen.emplace_back(z, false);
+        chosen.emplace_back(z, ConversionRule::surface);
       } else if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
                  has_inverted_corner(x, zones.corners[z]) ||
                  zones.stable_time_step[z] < fc.time_step_floor_ratio * median_step) {
-        chosen.emplace_back(z, true);  // a documented deviation from the paper, counted
+        chosen.emplace_back(z, ConversionRule::interior);  // a documented deviation from the paper, counted
       }
     }
   }
   if (chosen.empty()) return;
-  for (const auto& [z, interior] : chosen) convert_zone(z, interior);
+  for (const auto& [z, rule] : chosen) convert_zone(z, rule);
   topology_changed_ = true;
   // The step limit now comes from the zones that remain.
   stable_time_step_ = std::numeric_limits<double>::infinity();
@@ -119,7 +134,7 @@ void Simulation::convert_fractured_zones() {
   measure_ledger();
 }
 
-void Simulation::convert_zone(Index z, bool interior) {
+void Simulation::convert_zone(Index z, ConversionRule rule) {
   ZoneFields& zones = mesh_.zones;
   NodeFields& nodes = mesh_.nodes;
   const ZoneCorners n = zones.corners[z];
@@ -178,8 +193,13 @@ void Simulation::convert_zone(Index z, bool interior) {
     zones.neighbour[z][k] = -1;
   }
   const std::size_t b = static_cast<std::size_t>(zones.body[z]);
+  if (rule == ConversionRule::erosion) {
+    ++fracture_counts_[b].eroded;
+    fracture_counts_[b].eroded_mass += mass;
+    return;
+  }
   ++fracture_counts_[b].converted;
-  if (interior) ++fracture_counts_[b].interior_conversions;
+  if (rule == ConversionRule::interior) ++fracture_counts_[b].interior_conversions;
   fracture_counts_[b].converted_mass += mass;
 }
 

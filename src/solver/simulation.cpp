@@ -45,7 +45,7 @@ Simulation::Simulation(SimulationSetup setup)
   for (const Body& body : bodies_) {
     const auto m = static_cast<std::size_t>(body.material);
     fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
-    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any();
+    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any() || body.erosion_altitude_ratio > 0.0;
   }
   initialise();
   if (fracture_enabled_) {

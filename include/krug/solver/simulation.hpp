@@ -18,6 +18,9 @@ namespace krug {
 struct Body {
   std::string name;
   Index material = 0;
+  // Erosion on distortion (off at 0): an intact zone whose smallest altitude falls below this fraction
+  // of its initial one becomes a particle (mass and momentum exact), counted as eroded mass.
+  double erosion_altitude_ratio = 0.0;
   Index node_begin = 0, node_end = 0;
   Index zone_begin = 0, zone_end = 0;
 };
@@ -56,6 +59,8 @@ struct FractureCounts {
   long converted = 0;             // zones converted to particles
   long interior_conversions = 0;  // of which converted away from the surface (f_i, inverted corner, dt floor)
   double converted_mass = 0.0;    // per radian or per m
+  long eroded = 0;                // intact zones removed by erosion on distortion
+  double eroded_mass = 0.0;       // per radian or per m
 };
 
 // Per-body summary figures (whole body: x 2 pi in RZ).
@@ -142,7 +147,8 @@ class Simulation {
   void initialise();
   void measure_ledger();
   void book_contact_work(double dt_mid);
-  void convert_zone(Index zone, bool interior);
+  enum class ConversionRule { surface, interior, erosion };
+  void convert_zone(Index zone, ConversionRule rule);
   bool face_is_free(Index zone, int edge) const;
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
