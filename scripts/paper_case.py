@@ -62,8 +62,8 @@ def scenario(args):
     velocity = args.velocity
     plates = plate_layout(args.kind, args.thickness, args.gap)
     depth = -plates[-1][1]
-    # Long enough for the bullet to pass the whole target and its debris to clear; the stop rule ends earlier.
-    end_time = (depth + length + 0.02) / (0.5 * velocity)
+    # Time for the bullet to pass 10 mm beyond the rear face at half its speed; the stop rule ends earlier.
+    end_time = (depth + 0.010) / (0.5 * velocity)
     aluminium = {
         "density": 2700.0,
         "eos": {"model": "linear", "bulk_modulus": 7.3e10},
@@ -119,6 +119,122 @@ def scenario(args):
     }
 
 
+def bullet_tip(run_dir):
+    """Axial position of the bullet's tip (lowest z of its nodes) in the final state."""
+    import meshio
+    mesh = meshio.read(os.path.join(run_dir, "final.vtu"))
+    body = mesh.point_data["body"].ravel()
+    z = mesh.points[:, 0]
+    return float(z[body == 0].min())
+
+
+def report(run_dirs, csv_path):
+    """One row per run: residual velocity, loss, perforation, plug, debris ahead, eroded mass, ledgers."""
+    rows = []
+    for run in run_dirs:
+        summary = json.load(open(os.path.join(run, "summary.json")))
+        scenario = json.load(open(os.path.join(run, "scenario.resolved.json")))
+        u0 = -scenario["bodies"][0]["initial"]["velocity"][0]
+        bullet = summary["bodies"]["bullet"]
+        residual = -bullet["velocity"][0]
+        plates = [b for name, b in summary["bodies"].items() if name != "bullet"]
+        rear = min(b["mesh"]["z"]["from"] for b in scenario["bodies"][1:])
+        tip = bullet_tip(run)
+        # Debris ahead of the bullet: fragments and particles moving faster than it (axially, towards -z).
+        debris_momentum = 0.0
+        pieces = []
+        for b in plates:
+            for f in b.get("fracture", {}).get("fragments", [])[1:]:
+                pieces.append(f)
+                if -f["velocity"][0] > 0.5 * residual:
+                    debris_momentum += -f["mass"] * f["velocity"][0]
+        particles = summary["particles"]
+        energy = summary["ledger"]["energy"]
+        eroded = bullet.get("fracture", {}).get("eroded_mass", 0.0)
+        rows.append({
+            "run": os.path.basename(os.path.normpath(run)),
+            "status": summary["status"],
+            "time_us": summary["time"] * 1e6,
+            "U0": u0,
+            "residual": residual,
+            "dU_over_U0": (u0 - residual) / u0,
+            "perforated": tip < rear and residual > 0.0,
+            "tip_depth_mm": -tip * 1e3,
+            "plug_mass_g": max((p["mass"] for p in pieces), default=0.0) * 1e3,
+            "debris_fragment_momentum": debris_momentum,
+            "particle_count": particles["count"],
+            "particle_momentum_z": -particles["momentum"][0],
+            "bullet_mass_g": bullet["mass"] * 1e3,
+            "eroded_fraction": eroded / (bullet["mass"] + eroded) if bullet["mass"] + eroded > 0 else 0.0,
+            "energy_drift": energy["relative_drift"],
+            "contact_work": energy["contact"],
+            "mass_error": summary["ledger"]["mass"]["relative_error"],
+            "cycles": summary["cycles"],
+            "wall_seconds": summary["wall_seconds"],
+        })
+    keys = list(rows[0].keys())
+    with open(csv_path, "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
+    for r in rows:
+        print(f"{r['run']:40s} {r['status']:9s} U0 {r['U0']:.0f} residual {r['residual']:.1f} dU/U0 {r['dU_over_U0']:.3f} "
+              f"perforated {r['perforated']} plug {r['plug_mass_g']:.3f} g eroded {100 * r['eroded_fraction']:.2f} % "
+              f"drift {r['energy_drift']:.1e} wall {r['wall_seconds']:.0f} s")
+
+
+def read_particles(vtp_path):
+    """Centres (z, r) and radii from Krug's ASCII VTK PolyData particle file."""
+    import xml.etree.ElementTree as ET
+    piece = ET.parse(vtp_path).getroot().find("PolyData/Piece")
+    arrays = {a.get("Name"): [float(v) for v in (a.text or "").split()] for a in piece.iter("DataArray")}
+    coordinates = arrays.get("coordinates", [])
+    centres = [(coordinates[3 * i], coordinates[3 * i + 1]) for i in range(len(coordinates) // 3)]
+    return centres, arrays.get("radius", [])
+
+
+def figures(run_dir, png_path, count, field):
+    """Meshes and particles at `count` snapshot times, like the paper's Figs. 3-5."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PatchCollection, PolyCollection
+    from matplotlib.patches import Circle
+    import meshio
+    import xml.etree.ElementTree as ET
+    collection = ET.parse(os.path.join(run_dir, "run.pvd")).getroot().find("Collection")
+    meshes, particles = {}, {}
+    for ds in collection:
+        t = float(ds.get("timestep"))
+        (meshes if ds.get("part") == "0" else particles)[t] = os.path.join(run_dir, ds.get("file"))
+    times = sorted(meshes)
+    picks = [times[round(i * (len(times) - 1) / max(count - 1, 1))] for i in range(count)]
+    fig, axes = plt.subplots(1, count, figsize=(3.2 * count, 4.2), sharey=True)
+    for ax, t in zip(axes, picks):
+        mesh = meshio.read(meshes[t])
+        quads = mesh.cells_dict["quad"]
+        xy = mesh.points[:, [1, 0]] * 1e3  # r horizontal, z vertical, mm
+        values = mesh.cell_data_dict[field]["quad"].ravel()
+        poly = PolyCollection(xy[quads], array=values, cmap="viridis", edgecolors="k", linewidths=0.05)
+        poly.set_clim(0, max(1e-12, float(values.max())) if field != "damaged" else 1)
+        ax.add_collection(poly)
+        if t in particles:
+            centres, radii = read_particles(particles[t])
+            if centres:
+                circles = [Circle((c[1] * 1e3, c[0] * 1e3), r * 1e3) for c, r in zip(centres, radii)]
+                ax.add_collection(PatchCollection(circles, facecolor="tab:red", edgecolor="none", alpha=0.8))
+        ax.set_xlim(0, 9)
+        ax.set_ylim(-16, 8)
+        ax.set_aspect("equal")
+        ax.set_title(f"t = {t * 1e6:.1f} us", fontsize=9)
+        ax.set_xlabel("r (mm)")
+    axes[0].set_ylabel("z (mm)")
+    fig.suptitle(f"{os.path.basename(os.path.normpath(run_dir))}: {field}; particles red", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png_path, dpi=110)
+    print(png_path)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -138,7 +254,19 @@ def main():
     g.add_argument("--velocity", type=float, default=355.0)
     g.add_argument("--erosion", type=float, default=0.1, help="bullet erosion altitude ratio (0: off)")
     g.add_argument("--name", default=None)
+    r = sub.add_parser("report")
+    r.add_argument("runs", nargs="+")
+    r.add_argument("--csv", required=True)
+    fg = sub.add_parser("figures")
+    fg.add_argument("run")
+    fg.add_argument("png")
+    fg.add_argument("--count", type=int, default=4)
+    fg.add_argument("--field", default="equivalent_plastic_strain")
     args = parser.parse_args()
+    if args.command == "report":
+        return report(args.runs, args.csv)
+    if args.command == "figures":
+        return figures(args.run, args.png, args.count, args.field)
     os.makedirs(args.outdir, exist_ok=True)
     name = args.name or f"{args.kind}_{args.thickness:g}mm_{args.mass:g}g"
     path = os.path.join(args.outdir, name + ".json")
