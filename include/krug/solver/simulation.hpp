@@ -18,11 +18,11 @@ namespace krug {
 struct Body {
   std::string name;
   Index material = 0;
+  Index node_begin = 0, node_end = 0;
+  Index zone_begin = 0, zone_end = 0;
   // Erosion on distortion (off at 0): an intact zone whose smallest altitude falls below this fraction
   // of its initial one becomes a particle (mass and momentum exact), counted as eroded mass.
   double erosion_altitude_ratio = 0.0;
-  Index node_begin = 0, node_end = 0;
-  Index zone_begin = 0, zone_end = 0;
 };
 
 // A node whose velocity components are held at their initial values: zero for symmetry planes,
