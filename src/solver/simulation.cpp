@@ -85,9 +85,13 @@ void Simulation::initialise() {
       zones.mass[z] = zones.density[z] * volume;
       const ZoneCorners& n = zones.corners[z];
       zones.initial_altitude[z] = quad::smallest_altitude(x, area);
+      // Planar: median-mesh corner areas (Caramana et al. 1998). Axisymmetric: consistent lumped masses
+      // integral N_p r dA, so that the corner forces dV/dx_p accelerate axis nodes correctly.
+      const std::array<double, 4> axisymmetric_corners =
+          axisymmetric ? quad::axisymmetric_corner_volumes(x) : std::array<double, 4>{};
       for (int p = 0; p < 4; ++p) {
         const quad::Corners region = quad::corner_region(x, p);
-        const double corner_volume = axisymmetric ? quad::axisymmetric_volume(region) : quad::area(region);
+        const double corner_volume = axisymmetric ? axisymmetric_corners[p] : quad::area(region);
         zones.corner_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)] = zones.density[z] * corner_volume;
         nodes.mass[n[p]] += zones.density[z] * corner_volume;
         area_mass[static_cast<std::size_t>(n[p])] += zones.density[z] * 0.25 * area;
@@ -154,8 +158,16 @@ void Simulation::initialise() {
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
   double stable = std::numeric_limits<double>::infinity();
   for (Index z = 0; z < zones.size(); ++z) {
-    if (!zones.active[z] || zones.sound_speed[z] <= 0.0) continue;
-    const double dt = controls_.cfl * quad::smallest_altitude(mesh_.corner_positions(z), zones.area[z]) / zones.sound_speed[z];
+    if (!zones.active[z]) continue;
+    // The stress-wave speed, plus the spread of corner velocities: a zone must not invert in the
+    // first step even where the initial state sets no wave speed (a cold gas under a piston).
+    const ZoneCorners& n = zones.corners[z];
+    const Vec2 mean = 0.25 * (nodes.velocity(n[0]) + nodes.velocity(n[1]) + nodes.velocity(n[2]) + nodes.velocity(n[3]));
+    double spread = 0.0;
+    for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
+    const double speed = zones.sound_speed[z] + 2.0 * spread;
+    if (speed <= 0.0) continue;
+    const double dt = controls_.cfl * quad::smallest_altitude(mesh_.corner_positions(z), zones.area[z]) / speed;
     if (dt < stable) { stable = dt; controlling_zone_ = z; }
   }
   double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable;

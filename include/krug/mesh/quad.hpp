@@ -71,6 +71,34 @@ inline Corners corner_region(const Corners& c, int p) {
   return {c[p], 0.5 * (c[p] + c[next(p)]), centre_point, 0.5 * (c[prev(p)] + c[p])};
 }
 
+// Consistent r-weighted corner masses per unit density: integral of N_p r dA over the quad with the
+// bilinear shape functions N_p, by 2 x 2 Gauss quadrature (exact: N_p r J is at most cubic in each
+// direction). They sum to the axisymmetric volume, and for a uniform pressure they give axis and
+// off-axis corners the same axial acceleration (force ~ dV/dz_p, mass ~ integral N_p r dA), which the
+// median-mesh corner volumes do not (axis corners would accelerate 4/3 too fast).
+inline std::array<double, 4> axisymmetric_corner_volumes(const Corners& c) {
+  constexpr double g = 0.57735026918962576;  // 1/sqrt(3)
+  constexpr std::array<double, 2> points{-g, g};
+  constexpr std::array<double, 4> xi_sign{-1.0, 1.0, 1.0, -1.0}, eta_sign{-1.0, -1.0, 1.0, 1.0};
+  std::array<double, 4> volumes{};
+  for (double xi : points) {
+    for (double eta : points) {
+      std::array<double, 4> shape;
+      Vec2 d_xi{}, d_eta{};
+      Vec2 x{};
+      for (int p = 0; p < 4; ++p) {
+        shape[p] = 0.25 * (1.0 + xi_sign[p] * xi) * (1.0 + eta_sign[p] * eta);
+        x += shape[p] * c[p];
+        d_xi += (0.25 * xi_sign[p] * (1.0 + eta_sign[p] * eta)) * c[p];
+        d_eta += (0.25 * eta_sign[p] * (1.0 + xi_sign[p] * xi)) * c[p];
+      }
+      const double jacobian = cross(d_xi, d_eta);
+      for (int p = 0; p < 4; ++p) volumes[p] += shape[p] * x.y * jacobian;  // Gauss weights are 1
+    }
+  }
+  return volumes;
+}
+
 // Smallest altitude, the length scale of the CFL condition: area over the longest edge
 // (min(h, w) for an h x w rectangle, -> 0 for a sliver).
 inline double smallest_altitude(const Corners& c, double zone_area) {

@@ -49,13 +49,15 @@ namespace detail {
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
 // gradient along the edge itself, psi = max(0, min(1, (r_b + r_a)/2, 2 r_b, 2 r_a)).
 inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index b, Index after,
-                           Vec2 gradient) {
+                           Vec2 gradient, Vec2 direction) {
   const double g2 = dot(gradient, gradient);
-  if (g2 <= 0.0) return 0.0;
+  if (!(g2 > 0.0)) return 0.0;
+  // The continuing edge's extent is its projection on this edge's direction, so that psi = 1
+  // exactly for a linear velocity field also on curved grid lines (CSW 1998).
   auto ratio = [&](Index from, Index to) {
     const Vec2 dx = nodes.position(to) - nodes.position(from);
-    const double length = norm(dx);
-    if (length <= 0.0) return 0.0;
+    const double length = dot(dx, direction);
+    if (!(length > 0.0)) return 0.0;
     const Vec2 du = nodes.velocity(to) - nodes.velocity(from);
     return dot(du, gradient) / (length * g2);
   };
@@ -65,7 +67,8 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
   double r_after = has_after ? ratio(b, after) : 0.0;
   if (!has_before) r_before = r_after;
   if (!has_after) r_after = r_before;
-  return std::clamp(std::min({0.5 * (r_before + r_after), 2.0 * r_before, 2.0 * r_after}), 0.0, 1.0);
+  const double psi = std::min({0.5 * (r_before + r_after), 2.0 * r_before, 2.0 * r_after});
+  return std::isfinite(psi) ? std::clamp(psi, 0.0, 1.0) : 0.0;
 }
 
 }  // namespace detail
@@ -149,12 +152,15 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
         const Vec2 dx = x[k1] - x[k];
         if (dot(du, dx) >= 0.0) continue;  // expanding or shearing edge: no viscosity
         const double du_norm = norm(du);
+        if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
+        const double dx_norm = norm(dx);
         const double psi = params.viscosity.limiter
                                ? detail::edge_limiter(nodes, zones.edge_before[z][k], n[k], n[k1],
-                                                      zones.edge_after[z][k], (1.0 / norm(dx)) * du)
+                                                      zones.edge_after[z][k], (1.0 / dx_norm) * du,
+                                                      (1.0 / dx_norm) * dx)
                                : 0.0;
         const double active = 1.0 - psi;
-        if (active <= 0.0) continue;
+        if (!(active > 0.0)) continue;
         const Vec2 midpoint = 0.5 * (x[k] + x[k1]);
         double face = norm(midpoint - centre);
         if (axisymmetric && !area_weighted) face *= 0.5 * (midpoint.y + centre.y);
