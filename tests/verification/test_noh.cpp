@@ -1,0 +1,103 @@
+// Noh implosion (Noh 1987; verification.md E2) through the library API: planar (strip against a
+// wall), cylindrical (XY quarter, polar mesh), spherical (RZ quarter, equal-angle polar mesh, both
+// axisymmetric forms) and the spherical problem on a rectangular RZ mesh as a robustness run.
+//
+// Exact solution at t = 0.6 (tests/data/exact/noh_*_t0.6.csv): shock at r = t/3 = 0.2; behind it
+// rho = 4, 16, 64 (planar, cylindrical, spherical), at rest, e = 0.5; ahead of it
+// rho = (1 + t/r)^(k-1), i.e. 1, 4, 16 just outside r = 0.2.
+//
+// Judged as verification.md asks: the shock position within 2 local zone sizes on every row (ray),
+// and the plateau density within 10 % on r in [0.1, 0.2], away from the wall-heating dip at the
+// centre. The plateau window stops 2 zones inside the measured shock on each row, since those zones
+// belong to the smeared front that the position criterion already judges.
+#include <catch2/catch.hpp>
+
+#include "noh_measures.hpp"
+#include "verification_support.hpp"
+
+using namespace krug;
+using namespace krug::verification;
+using namespace krug::verification::noh;
+
+namespace {
+
+void check_noh(const Run& run, const NohCase& c) {
+  INFO(c.problem);
+  INFO(run.failure);
+  report_failure(c.problem, run);
+  REQUIRE(run.completed());
+  const Body& gas = run.simulation.bodies().front();
+  const long zones = gas.zone_end - gas.zone_begin;
+  const NohResult r = measure_noh(run, c);
+
+  CHECK(run.simulation.ledger().relative_energy_drift() < 1e-12);  // compatible update, walls at rest
+  INFO("shock on the rows: from " << r.shock.smallest << " to " << r.shock.largest << ", worst "
+                                  << r.shock.worst_zones << " zones of " << r.shock.zone_size);
+  CHECK(r.shock.all_found);
+  if (!r.shock.all_found) {
+    double peak = 0.0;
+    const PatchShape shape = patch_shape(run.simulation.mesh(), gas);
+    for (int j = 0; j < shape.zones_j; ++j) {
+      peak = std::max(peak, peak_density(row_profile(run.simulation.mesh(), gas, j, c.coordinate)));
+    }
+    report(c.problem, "shock: density never reaches the mid-level (peak rho)",
+           format_number("%.0f", post_shock_density(c.dimension)), peak, "shock not found", zones, run.seconds);
+    return;
+  }
+  CHECK(r.shock.worst_zones < shock_tolerance_zones);
+  report(c.problem, "shock r (mean over rows; worst row)", format_number("%.4f", shock_radius), r.shock.mean,
+         format_number("%.2f zones", r.shock.worst_zones), zones, run.seconds);
+  report(c.problem, "shock r spread over rows", "0", r.shock.spread(),
+         format_number("%.2f zones", r.shock.spread() / r.shock.zone_size), zones, run.seconds);
+
+  INFO("plateau: mean " << r.plateau.mean << " over " << r.plateau.zones << " zones, worst zone off by "
+                        << r.plateau.largest_deviation);
+  REQUIRE(r.plateau.zones > 0);
+  CHECK(r.plateau.largest_deviation < plateau_tolerance);
+  report(c.problem, "plateau rho on [0.1, shock) (mean; worst zone)",
+         format_number("%.0f", post_shock_density(c.dimension)), r.plateau.mean,
+         format_number("%.1f %%", 100.0 * r.plateau.largest_deviation), zones, run.seconds);
+}
+
+}  // namespace
+
+TEST_CASE("Noh planar: shock position and plateau density", "[noh]") {
+  check_noh(run_to_end(load_example("noh_planar.json")), {"Noh, planar", 1, Coordinate::first_axis});
+}
+
+TEST_CASE("Noh cylindrical on a polar XY quarter: shock position and plateau density", "[noh]") {
+  check_noh(run_to_end(load_example("noh_cylindrical.json")), {"Noh, cylindrical (XY polar)", 2, Coordinate::radius});
+}
+
+// Known failure (docs/verification.md): at 50 radial zones the plateau is 11 % low (56.9 vs 64), the
+// axis row worst; the 10 % criterion is kept. Runs in CI and reports, without failing the suite.
+TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, control-volume form", "[noh][axisymmetric][!mayfail]") {
+  check_noh(run_to_end(load_example("noh_spherical.json")),
+            {"Noh, spherical (RZ polar, control volume)", 3, Coordinate::radius});
+}
+
+// Known failure F4 (docs/verification.md): the area-weighted form updates internal energy with the work
+// of the s_p-scaled forces, not p dV; the fix is designed but not made. Reported, not hidden.
+TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, area-weighted form", "[noh][axisymmetric][!mayfail]") {
+  io::Scenario scenario = load_example("noh_spherical.json");
+  scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
+  check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, area weighted)", 3, Coordinate::radius});
+}
+
+// Known failure F7 (docs/verification.md): the control-volume form tangles near the axis at t ~ 0.24.
+TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end (robustness)", "[noh][axisymmetric][!mayfail]") {
+  // verification.md E2: the rectangular mesh only for robustness: it must reach t = 0.6 without
+  // tangling or a collapsing time step; its accuracy is not judged.
+  for (const AxisymmetricForm form : {AxisymmetricForm::control_volume, AxisymmetricForm::area_weighted}) {
+    io::Scenario scenario = load_example("noh_spherical_rectangle.json");
+    scenario.setup.controls.axisymmetric_form = form;
+    const Run run = run_to_end(scenario);
+    const std::string problem = form == AxisymmetricForm::control_volume
+                                    ? "Noh, spherical (RZ rectangle, control volume)"
+                                    : "Noh, spherical (RZ rectangle, area weighted)";
+    INFO(problem << ": " << run.failure);
+    CHECK(run.completed());
+    report(problem, "reaches t = 0.6", "0.6", run.simulation.time(), run.completed() ? "completed" : "FAILED",
+           run.simulation.bodies().front().zone_end, run.seconds);
+  }
+}

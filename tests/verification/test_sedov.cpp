@@ -1,0 +1,95 @@
+// Sedov blast wave (Sedov 1959; verification.md E2) through the library API: planar (half space on
+// a strip), cylindrical (XY quarter, polar mesh) and spherical (RZ quarter, polar mesh, both
+// axisymmetric forms). Gamma 1.4, rho0 = 1, p0 = 0; at t = 1 the shock stands at 0.5 / 0.75 / 1.0
+// for blast energies 0.0673185 per unit area (half space) / 0.311357 per unit length / 0.851072
+// (tests/data/exact/sedov_*_t1.csv; Kamm & Timmes 2007).
+//
+// Judged as verification.md asks: the shock position on every row (ray) and total energy, which a
+// compatible scheme conserves to round-off; not the peak density ratio 6, which modest resolution
+// cannot reach. The shock on a row is where density crosses half-way between the undisturbed 1 and
+// the row's own peak (the half-height of the numerical front), so the measure does not depend on
+// how far the peak falls short of 6.
+#include <catch2/catch.hpp>
+
+#include <numbers>
+
+#include "verification_support.hpp"
+
+using namespace krug;
+using namespace krug::verification;
+
+namespace {
+
+// Shock within 2 local zone sizes (the spacing of the zone centres around the crossing) of the
+// exact radius, as for Noh (verification.md E2): a captured front spans about 3 zones and a
+// half-height crossing sits within one zone of its centre. Measured values in docs/verification.md.
+constexpr double shock_tolerance_zones = 2.0;
+// Energy: compatible update, no boundary work (symmetry planes, free outer boundary the shock never
+// reaches). About 1e3 to 1e4 steps with 1e-16 relative increments: 1e-12 is round-off.
+constexpr double energy_drift_tolerance = 1e-12;
+
+struct SedovCase {
+  const char* problem;
+  Coordinate coordinate;
+  double shock_radius;   // exact, t = 1
+  double model_energy;   // energy in the modelled region, per unit thickness or per radian
+};
+
+void check_sedov(const Run& run, const SedovCase& c) {
+  INFO(c.problem);
+  INFO(run.failure);
+  report_failure(c.problem, run);
+  REQUIRE(run.completed());
+  const Simulation& sim = run.simulation;
+  const Body& gas = sim.bodies().front();
+  const long zones = gas.zone_end - gas.zone_begin;
+
+  // The deposit convention of the scenario (energy_deposit: per unit thickness planar, whole body
+  // in RZ) must give the model energy of the exact solution; 1e-12 of the background e0 = 1e-12 is
+  // also in the total, far below this bound.
+  CHECK(std::abs(sim.ledger().initial_total_energy / c.model_energy - 1.0) < 1e-9);
+  const double drift = sim.ledger().relative_energy_drift();
+  CHECK(drift < energy_drift_tolerance);
+  report(c.problem, "total energy drift", "0 (round-off)", drift, "< 1e-12", zones, run.seconds);
+
+  const ShockSurvey shock = survey_shock(sim.mesh(), gas, c.coordinate, c.shock_radius,
+                                         [](const std::vector<ZoneSample>& row) { return 0.5 * (1.0 + peak_density(row)); });
+  INFO("shock on the rows: from " << shock.smallest << " to " << shock.largest << ", worst " << shock.worst_zones
+                                  << " zones of " << shock.zone_size);
+  CHECK(shock.all_found);
+  CHECK(shock.worst_zones < shock_tolerance_zones);
+  report(c.problem, "shock r (mean over rows; worst row)", format_number("%.3f", c.shock_radius), shock.mean,
+         format_number("%.2f zones", shock.worst_zones), zones, run.seconds);
+  report(c.problem, "shock r spread over rows", "0", shock.spread(),
+         format_number("%.2f zones", shock.spread() / shock.zone_size), zones, run.seconds);
+}
+
+// Energies of the modelled regions (verification.md E2 and the scenario descriptions).
+constexpr double planar_energy = 0.0673185 * 0.02;           // per unit area x the strip's height 0.02
+constexpr double cylindrical_energy = 0.311357 / 4.0;        // XY quarter, per unit length
+const double spherical_energy = 0.851072 / (4.0 * std::numbers::pi);  // RZ quarter (hemisphere), per radian
+
+}  // namespace
+
+TEST_CASE("Sedov planar: shock position and total energy", "[sedov]") {
+  check_sedov(run_to_end(load_example("sedov_planar.json")),
+              {"Sedov, planar", Coordinate::first_axis, 0.5, planar_energy});
+}
+
+TEST_CASE("Sedov cylindrical on a polar XY quarter: shock position and total energy", "[sedov]") {
+  check_sedov(run_to_end(load_example("sedov_cylindrical.json")),
+              {"Sedov, cylindrical (XY polar)", Coordinate::radius, 0.75, cylindrical_energy});
+}
+
+TEST_CASE("Sedov spherical on an RZ polar quarter, control-volume form", "[sedov][axisymmetric]") {
+  check_sedov(run_to_end(load_example("sedov_spherical.json")),
+              {"Sedov, spherical (RZ polar, control volume)", Coordinate::radius, 1.0, spherical_energy});
+}
+
+// Known failure F4 (docs/verification.md): area-weighted energy update, see test_noh.cpp.
+TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov][axisymmetric][!mayfail]") {
+  io::Scenario scenario = load_example("sedov_spherical.json");
+  scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
+  check_sedov(run_to_end(scenario),
+              {"Sedov, spherical (RZ polar, area weighted)", Coordinate::radius, 1.0, spherical_energy});
+}
