@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine (packages), builds Krug optimised and passes the test suite:
 # unit, kernel, verification, app and package tests; the convergence studies at reduced size
-# (KRUG_CONVERGENCE_SCALE, default 0.25 here; 1 is the full study); then a build of the unit tests
+# (KRUG_CONVERGENCE_SCALE, default 0.5 here; 1 is the full study); then a build of the unit tests
 # and the app with AddressSanitizer and UndefinedBehaviorSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,7 +11,7 @@ jobs=$(nproc)
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$jobs"
-KRUG_CONVERGENCE_SCALE="${KRUG_CONVERGENCE_SCALE:-0.25}" \
+KRUG_CONVERGENCE_SCALE="${KRUG_CONVERGENCE_SCALE:-0.5}" \
   ctest --test-dir build --output-on-failure -j"$jobs" --timeout 1200
 
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -385,12 +385,18 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     stats.sweeps = 1;
   } else {
     for (int sweep = 0; sweep < setup_.controls.max_sweeps; ++sweep) {
-      double worst = 0.0;  // deepest remaining penetration relative to the contact's length scale
-      for (Candidate& c : candidates_) {
-        const double gap = update(c, dt_mid, dt_next);
+      for (Candidate& c : candidates_) update(c, dt_mid, dt_next);
+      stats.sweeps = sweep + 1;
+      // Deepest remaining penetration relative to the contact's length scale, measured after the whole
+      // sweep: each update closes its own gap, but the updates after it in the sweep can reopen it (a
+      // gap taken right after its own update is never negative, which ended every solve after one sweep).
+      double worst = 0.0;
+      for (const Candidate& c : candidates_) {
+        const Geometry g = contact_geometry(c, dt_next);
+        if (!g.valid) continue;
+        const double gap = g.gap - overlap_target(c, dt_next);
         if (gap < 0.0) worst = std::max(worst, -gap / std::max(c.length, 1e-300));
       }
-      stats.sweeps = sweep + 1;
       if (worst <= setup_.controls.gap_tolerance) break;
     }
   }
