@@ -85,6 +85,8 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                                        {"converted_zones", counts.converted},
                                        {"interior_conversions", counts.interior_conversions},
                                        {"converted_mass", whole * counts.converted_mass},
+                                       {"eroded_zones", counts.eroded},
+                                       {"eroded_mass", whole * counts.eroded_mass},
                                        {"fragments", pieces}};
     }
   }

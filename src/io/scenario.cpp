@@ -551,6 +551,11 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
                                    material, list, guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
     }
     body.material = m->second;
+    {
+      JsonObject erosion = spec.object_or_empty("erosion");
+      body.erosion_altitude_ratio = erosion.number("altitude_ratio", 0.0, Range::between(0.0, 1.0));
+      erosion.finish();
+    }
     const Index body_index = static_cast<Index>(setup.bodies.size());
     const MeshedBody meshed = read_mesh(spec.object("mesh"), setup.mesh, body_index, geometry);
     body.node_begin = meshed.patch.node_begin;
