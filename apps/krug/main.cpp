@@ -1,7 +1,13 @@
 // krug: the command-line driver. Parses arguments, loads a scenario, runs it through the library and
-// reports progress; it holds no physics.
-#include <chrono>
+// reports progress; draws pictures (Cairo) and has the history plotted (Python); runs sweeps as child
+// processes. It holds no physics.
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -12,15 +18,29 @@
 #include "krug/core/error.hpp"
 #include "krug/io/run.hpp"
 #include "krug/io/scenario.hpp"
+#include "pictures.hpp"
+#include "plots.hpp"
+#include "sweep_runner.hpp"
 
 namespace {
 
 constexpr std::string_view usage = R"(usage:
-  krug run SCENARIO.json [--out DIR] [--quiet | --verbose]
-      Runs a scenario; writes DIR/summary.json, history.csv, final.vtu, run.pvd, snapshots/.
+  krug run SCENARIO.json [--out DIR] [--quiet | --verbose] [--no-pictures] [--no-plots]
+      Runs a scenario; writes DIR/summary.json, history.csv, final.vtu, run.pvd, snapshots/,
+      pictures/ (PNG, with Cairo) and plots/ (PNG, with Python and matplotlib).
+  krug run --restart DIR/checkpoint.bin [--out DIR] [--quiet | --verbose] [--no-pictures] [--no-plots]
+      Continues a run from a checkpoint (output.checkpoint_interval, or written on Ctrl-C/SIGTERM),
+      with the scenario.resolved.json next to it; outputs go to DIR (default: the checkpoint's).
   krug validate SCENARIO.json
       Checks a scenario without running it.
-  krug --help
+  krug sweep SCENARIO.json --set PATH=V1,V2,... [--set ...] [--jobs N] [--out DIR] [--quiet]
+      Runs every combination of the values (PATH like materials.steel.density or
+      bodies[0].initial.velocity[0]) in parallel processes into DIR/<variant>/ and writes
+      DIR/sweep.csv (default DIR: out/<scenario>-sweep).
+  krug --help | --version
+
+Exit codes: 0 completed, 1 run failed, 2 bad input or usage, 3 unexpected error,
+128 + signal when interrupted (130 for Ctrl-C; a checkpoint is written first).
 )";
 
 int fail_usage(const std::string& message) {
@@ -28,19 +48,67 @@ int fail_usage(const std::string& message) {
   return 2;
 }
 
+// Ctrl-C and SIGTERM ask the run to stop at the end of the cycle (it writes a checkpoint); a second
+// one stops at once.
+std::atomic<bool> interrupted{false};
+volatile std::sig_atomic_t signal_number = 0;
+
+extern "C" void on_signal(int s) {
+  if (interrupted.load()) _exit(128 + s);
+  signal_number = s;
+  interrupted.store(true);
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;  // no SA_RESTART: a waiting sweep wakes up
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
 struct Arguments {
   std::string command;
   std::string scenario;
+  std::string restart;
   std::string out;
   bool quiet = false;
   bool verbose = false;
+  bool pictures = true;
+  bool plots = true;
+  std::vector<std::string> sets;
+  int jobs = 0;
 };
 
 int run(const Arguments& args) {
-  const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
+  const bool restarting = !args.restart.empty();
+  const std::filesystem::path checkpoint(args.restart);
+  const krug::io::Scenario scenario =
+      restarting ? krug::io::load_scenario(checkpoint.parent_path() / "scenario.resolved.json")
+                 : krug::io::load_scenario(args.scenario);
+  const std::filesystem::path directory =
+      !args.out.empty() ? std::filesystem::path(args.out)
+      : restarting     ? (checkpoint.parent_path().empty() ? std::filesystem::path(".") : checkpoint.parent_path())
+                       : std::filesystem::path(scenario.output.directory);
+  const std::string title = !scenario.title.empty() ? scenario.title
+                            : restarting            ? checkpoint.parent_path().filename().string()
+                                                    : std::filesystem::path(args.scenario).stem().string();
   krug::io::RunOptions options;
-  options.output_directory = args.out;
-  const std::filesystem::path directory = args.out.empty() ? scenario.output.directory : args.out;
+  options.output_directory = directory;
+  options.interrupt = &interrupted;
+
+  const bool want_pictures = args.pictures && scenario.output.pictures.enabled;
+  if (want_pictures && krug::app::pictures_available()) {
+    const krug::io::PictureSettings settings = scenario.output.pictures;
+    options.picture = [settings, title](const krug::Simulation& s, const std::filesystem::path& dir,
+                                        const std::string& name) {
+      (void)krug::app::write_picture(s, settings, title, dir, name);
+    };
+  } else if (want_pictures && !args.quiet) {
+    std::fprintf(stderr, "krug: no pictures: this krug was built without Cairo (libcairo2-dev)\n");
+  }
+
   double last_report = 0.0;
   const bool interactive = !args.quiet;
   options.on_cycle = [&](const krug::Simulation& s, double elapsed) {
@@ -55,13 +123,27 @@ int run(const Arguments& args) {
     }
     return true;
   };
-  const krug::io::RunResult result = krug::io::run_scenario(scenario, options);
+  install_signal_handlers();
+  const krug::io::RunResult result = restarting ? krug::io::restart_scenario(scenario, checkpoint, options)
+                                                : krug::io::run_scenario(scenario, options);
   if (interactive && last_report > 0.0) std::fputc('\n', stderr);
+  for (const std::string& warning : result.warnings) std::fprintf(stderr, "krug: warning: %s\n", warning.c_str());
+
+  if (args.plots && scenario.output.plots) {
+    const std::string note = krug::app::make_plots(directory);
+    if (!note.empty() && !args.quiet) std::fprintf(stderr, "krug: %s\n", note.c_str());
+  }
+
+  if (result.stopped_by == "interrupted") {
+    std::fprintf(stderr, "krug: interrupted; checkpoint %s\nkrug: continue with: krug run --restart %s\n",
+                 result.checkpoint.string().c_str(), result.checkpoint.string().c_str());
+    return 128 + (signal_number > 0 ? static_cast<int>(signal_number) : SIGINT);
+  }
   if (result.status == krug::io::RunStatus::completed) {
     if (!args.quiet) {
-      std::printf("krug: %s completed in %.2f s; results in %s (summary.json, history.csv, run.pvd)\n",
-                  scenario.title.empty() ? args.scenario.c_str() : scenario.title.c_str(), result.wall_seconds,
-                  directory.string().c_str());
+      const std::string how = result.stopped_by == "stop rule" ? " (ended by the stop rule)" : "";
+      std::printf("krug: %s completed%s in %.2f s; results in %s (summary.json, history.csv, run.pvd)\n", title.c_str(),
+                  how.c_str(), result.wall_seconds, directory.string().c_str());
     }
     return 0;
   }
@@ -78,33 +160,74 @@ int main(int argc, char** argv) {
     std::fputs(std::string(usage).c_str(), words.empty() ? stderr : stdout);
     return words.empty() ? 2 : 0;
   }
+  if (words[0] == "--version") {
+    std::printf("krug %s\n", KRUG_VERSION);
+    return 0;
+  }
   Arguments args;
   args.command = words[0];
-  if (args.command != "run" && args.command != "validate") return fail_usage("unknown command \"" + args.command + "\"");
+  if (args.command != "run" && args.command != "validate" && args.command != "sweep") {
+    return fail_usage("unknown command \"" + args.command + "\"");
+  }
   for (std::size_t i = 1; i < words.size(); ++i) {
     const std::string& w = words[i];
+    auto value = [&]() -> const std::string* { return i + 1 < words.size() ? &words[++i] : nullptr; };
     if (w == "--out") {
-      if (i + 1 >= words.size()) return fail_usage("--out needs a directory");
-      args.out = words[++i];
+      const std::string* v = value();
+      if (!v) return fail_usage("--out needs a directory");
+      args.out = *v;
+    } else if (w == "--restart" && args.command == "run") {
+      const std::string* v = value();
+      if (!v) return fail_usage("--restart needs a checkpoint file (DIR/checkpoint.bin)");
+      args.restart = *v;
+    } else if (w == "--set" && args.command == "sweep") {
+      const std::string* v = value();
+      if (!v) return fail_usage("--set needs PATH=VALUE1,VALUE2,...");
+      args.sets.push_back(*v);
+    } else if (w == "--jobs" && args.command == "sweep") {
+      const std::string* v = value();
+      char* end = nullptr;
+      const long jobs = v ? std::strtol(v->c_str(), &end, 10) : 0;
+      if (!v || *end != '\0' || jobs < 1 || jobs > 1024) return fail_usage("--jobs needs a number from 1 to 1024");
+      args.jobs = static_cast<int>(jobs);
     } else if (w == "--quiet") {
       args.quiet = true;
-    } else if (w == "--verbose") {
+    } else if (w == "--verbose" && args.command == "run") {
       args.verbose = true;
+    } else if (w == "--no-pictures" && args.command == "run") {
+      args.pictures = false;
+    } else if (w == "--no-plots" && args.command == "run") {
+      args.plots = false;
     } else if (!w.empty() && w[0] == '-') {
-      return fail_usage("unknown option \"" + w + "\"");
+      return fail_usage("unknown option \"" + w + "\" for krug " + args.command);
     } else if (args.scenario.empty()) {
       args.scenario = w;
     } else {
       return fail_usage("more than one scenario given");
     }
   }
-  if (args.scenario.empty()) return fail_usage("no scenario file given");
+  if (args.quiet && args.verbose) return fail_usage("--quiet and --verbose exclude each other");
+  if (!args.restart.empty() && !args.scenario.empty()) {
+    return fail_usage("--restart continues the scenario stored next to the checkpoint: give no scenario file");
+  }
+  if (args.scenario.empty() && args.restart.empty()) return fail_usage("no scenario file given");
+  if (args.command == "sweep" && args.sets.empty()) return fail_usage("krug sweep needs at least one --set");
   try {
     if (args.command == "validate") {
       const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
       std::printf("krug: %s is valid (%zu bodies, %d zones)\n", args.scenario.c_str(), scenario.setup.bodies.size(),
                   scenario.setup.mesh.zones.size());
       return 0;
+    }
+    if (args.command == "sweep") {
+      install_signal_handlers();
+      krug::app::SweepArguments sweep;
+      sweep.scenario = args.scenario;
+      sweep.sets = args.sets;
+      sweep.jobs = args.jobs;
+      sweep.out = args.out;
+      sweep.quiet = args.quiet;
+      return krug::app::run_sweep(sweep, interrupted, signal_number);
     }
     return run(args);
   } catch (const krug::InputError& error) {

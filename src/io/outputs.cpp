@@ -44,6 +44,7 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   s["geometry"] = g == GeometryKind::axisymmetric ? "axisymmetric" : "planar";
   s["axes"] = Json::array({std::string(axis_name(g, 0)), std::string(axis_name(g, 1))});
   s["units"] = "SI (m, kg, s, Pa, J); masses, momenta and energies for whole bodies";
+  s["stopped_by"] = result.stopped_by;
   s["time"] = simulation.time();
   s["cycles"] = simulation.cycle();
   s["zone_cycles"] = simulation.zone_cycles();
@@ -104,26 +105,95 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   return s.dump(2) + "\n";
 }
 
-RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory)
-    : directory_(std::move(directory)), settings_(scenario.output) {
+RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
+                         PictureHook picture_hook)
+    : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
+  open(scenario);
+  history_.open(directory_ / "history.csv", std::ios::trunc);
+  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+  append_history(history_header(simulation));
+  write_history_row(simulation);
+  write_snapshot(simulation);
+  if (!settings_.pictures.every_snapshot) picture(simulation, "initial");
+  next_history_time_ = settings_.history_interval;
+  next_snapshot_time_ = settings_.snapshot_interval > 0.0 ? settings_.snapshot_interval
+                                                          : std::numeric_limits<double>::infinity();
+}
+
+RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
+                         PictureHook picture_hook, const RunProgress& resume,
+                         const std::filesystem::path& previous_directory)
+    : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
+  open(scenario);
+  std::error_code error;
+  const bool same = std::filesystem::equivalent(directory_, previous_directory, error);
+  const std::filesystem::path history = directory_ / "history.csv";
+  if (!same) {
+    // A new directory: bring the history and the snapshots so far, so the outputs are whole.
+    const std::filesystem::path old_history = previous_directory / "history.csv";
+    std::ifstream in(old_history, std::ios::binary);
+    std::string rows(static_cast<std::size_t>(resume.history_bytes), '\0');
+    if (!in || !in.read(rows.data(), static_cast<std::streamsize>(rows.size()))) {
+      rows = history_header(simulation);  // the earlier rows are lost; the columns stay the same
+    }
+    write_text_atomically(history, rows);
+    history_bytes_ = rows.size();
+    for (const auto* list : {&resume.snapshots, &resume.particle_snapshots}) {
+      for (const auto& [time, name] : *list) {
+        std::filesystem::copy_file(previous_directory / name, directory_ / name,
+                                   std::filesystem::copy_options::overwrite_existing, error);
+      }
+    }
+  } else if (std::filesystem::exists(history) && std::filesystem::file_size(history) >= resume.history_bytes) {
+    std::filesystem::resize_file(history, resume.history_bytes);  // rows written after the checkpoint
+    history_bytes_ = resume.history_bytes;
+  } else {
+    write_text_atomically(history, history_header(simulation));
+    history_bytes_ = std::filesystem::file_size(history);
+  }
+  history_.open(history, std::ios::app);
+  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+  snapshots_ = resume.snapshots;
+  particle_snapshots_ = resume.particle_snapshots;
+  next_history_time_ = resume.next_history_time;
+  next_snapshot_time_ = resume.next_snapshot_time;
+}
+
+void RunRecorder::open(const Scenario& scenario) {
   std::error_code error;
   std::filesystem::create_directories(directory_ / "snapshots", error);
   if (error) throw InputError(fmt::format("{}: cannot create the output directory: {}", directory_.string(), error.message()));
   write_text_atomically(directory_ / "scenario.resolved.json", scenario.resolved_json + "\n");
-  history_.open(directory_ / "history.csv", std::ios::trunc);
-  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+}
+
+RunProgress RunRecorder::progress() {
+  history_.flush();
+  RunProgress p;
+  p.next_history_time = next_history_time_;
+  p.next_snapshot_time = next_snapshot_time_;
+  p.snapshots = snapshots_;
+  p.particle_snapshots = particle_snapshots_;
+  p.history_bytes = history_bytes_;
+  return p;
+}
+
+std::string RunRecorder::history_header(const Simulation& simulation) {
   const GeometryKind g = simulation.geometry();
   const std::string a0(axis_name(g, 0)), a1(axis_name(g, 1));
-  history_ << "time,cycle,dt";
+  std::string header = "time,cycle,dt";
   for (const Body& body : simulation.bodies()) {
-    history_ << fmt::format(",{0}_v{1},{0}_v{2},{0}_{1},{0}_{2}", body.name, a0, a1);
+    header += fmt::format(",{0}_v{1},{0}_v{2},{0}_{1},{0}_{2}", body.name, a0, a1);
   }
-  history_ << ",kinetic,internal,plastic,viscous,hourglass,contact,converted,boundary,total,relative_drift,particles\n";
-  write_history_row(simulation);
-  write_snapshot(simulation);
-  next_history_time_ = settings_.history_interval;
-  next_snapshot_time_ = settings_.snapshot_interval > 0.0 ? settings_.snapshot_interval
-                                                          : std::numeric_limits<double>::infinity();
+  return header + ",kinetic,internal,plastic,viscous,hourglass,contact,converted,boundary,total,relative_drift,particles\n";
+}
+
+void RunRecorder::append_history(const std::string& text) {
+  history_ << text;
+  history_bytes_ += text.size();
+}
+
+void RunRecorder::picture(const Simulation& simulation, const std::string& name) {
+  if (picture_ && settings_.pictures.enabled) picture_(simulation, directory_, name);
 }
 
 RunRecorder::~RunRecorder() = default;
@@ -131,20 +201,22 @@ RunRecorder::~RunRecorder() = default;
 void RunRecorder::write_history_row(const Simulation& simulation) {
   const double whole = simulation.whole_body_factor();
   const EnergyLedger& e = simulation.ledger().energy;
-  history_ << fmt::format("{:.9e},{},{:.6e}", simulation.time(), simulation.cycle(), simulation.last_time_step());
+  std::string row = fmt::format("{:.9e},{},{:.6e}", simulation.time(), simulation.cycle(), simulation.last_time_step());
   for (const Body& body : simulation.bodies()) {
     const BodySummary b = simulation.summarise(body);
-    history_ << fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e}", b.velocity.x, b.velocity.y, b.centroid.x, b.centroid.y);
+    row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e}", b.velocity.x, b.velocity.y, b.centroid.x, b.centroid.y);
   }
-  history_ << fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
-                          whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
-                          whole * e.hourglass, whole * e.contact, whole * e.converted, whole * e.boundary,
-                          whole * e.total(), simulation.ledger().relative_energy_drift(), simulation.particles().size());
+  row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
+                     whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
+                     whole * e.hourglass, whole * e.contact, whole * e.converted, whole * e.boundary,
+                     whole * e.total(), simulation.ledger().relative_energy_drift(), simulation.particles().size());
+  append_history(row);
 }
 
 void RunRecorder::write_snapshot(const Simulation& simulation) {
   const std::string name = fmt::format("snapshots/state_{:05d}.vtu", snapshots_.size());
   write_vtu(simulation, directory_ / name);
+  if (settings_.pictures.every_snapshot) picture(simulation, fmt::format("state_{:05d}", snapshots_.size()));
   snapshots_.emplace_back(simulation.time(), name);
   if (simulation.fracture_enabled()) {
     const std::string particles = fmt::format("snapshots/particles_{:05d}.vtp", particle_snapshots_.size());
@@ -182,6 +254,7 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   }
   pvd += "  </Collection>\n</VTKFile>\n";
   write_text_atomically(directory_ / "run.pvd", pvd);
+  picture(simulation, "final");
   write_text_atomically(directory_ / "summary.json", summary_json(simulation, result));
 }
 

@@ -1,40 +1,147 @@
 #include "krug/io/run.hpp"
 
 #include <chrono>
+#include <optional>
+
+#include <fmt/format.h>
 
 #include "krug/core/error.hpp"
+#include "krug/io/checkpoint.hpp"
+#include "krug/io/stop_rule.hpp"
 
 namespace krug::io {
 
-RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
+namespace {
+
+// Where a run stands between cycles, apart from the simulation and the recorder.
+struct LoopState {
+  std::optional<StopMonitor> stop;
+  double next_checkpoint_time = 0.0;
+  double previous_wall_seconds = 0.0;  // wall time before a restart
+};
+
+std::optional<StopMonitor> stop_monitor(const Scenario& scenario) {
+  if (!scenario.stop) return std::nullopt;
+  return StopMonitor(*scenario.stop);
+}
+
+Vec2 stop_velocity(const Simulation& simulation, const StopMonitor& monitor) {
+  const auto body = static_cast<std::size_t>(monitor.rule().body_index);
+  return simulation.summarise(simulation.bodies()[body]).velocity;
+}
+
+// The loop after setup (fresh or restored): steps, outputs, stop rule, checkpoints, interruption.
+RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder& recorder, LoopState& loop,
+                   const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  Simulation simulation(scenario.setup);
-  RunRecorder recorder(scenario, simulation,
-                       options.output_directory.empty() ? std::filesystem::path(scenario.output.directory)
-                                                        : options.output_directory);
+  auto elapsed = [&] {
+    return loop.previous_wall_seconds +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const std::uint64_t scenario_hash = fnv1a(scenario.resolved_json);
+  const double interval = scenario.output.checkpoint_interval;
   RunResult result;
+  auto checkpoint = [&] {
+    RunProgress progress = recorder.progress();
+    progress.next_checkpoint_time = loop.next_checkpoint_time;
+    progress.wall_seconds = elapsed();
+    if (loop.stop) {
+      progress.has_stop_state = true;
+      progress.stop = loop.stop->state();
+    }
+    result.checkpoint = recorder.directory() / "checkpoint.bin";
+    write_checkpoint(result.checkpoint, simulation.state(), progress, scenario_hash);
+  };
   try {
     while (!simulation.finished()) {
       simulation.step();
       recorder.observe(simulation);
+      if (loop.stop && loop.stop->observe(simulation.time(), stop_velocity(simulation, *loop.stop))) {
+        result.stopped_by = "stop rule";
+        break;
+      }
+      if (interval > 0.0 && simulation.time() >= loop.next_checkpoint_time * (1.0 - 1e-12) && !simulation.finished()) {
+        while (loop.next_checkpoint_time <= simulation.time() * (1.0 + 1e-12)) loop.next_checkpoint_time += interval;
+        checkpoint();
+      }
+      if (options.interrupt && options.interrupt->load() && !simulation.finished()) {
+        checkpoint();
+        result.status = RunStatus::failed;
+        result.message = "interrupted";
+        result.stopped_by = "interrupted";
+        break;
+      }
       if (options.on_cycle && !options.on_cycle(simulation, elapsed())) {
         result.status = RunStatus::failed;
         result.message = "stopped on request before the end time";
+        result.stopped_by = "request";
         break;
       }
     }
-    if (result.status == RunStatus::completed && simulation.cycle() >= simulation.controls().max_cycles &&
-        simulation.time() < simulation.controls().end_time) {
+    if (result.status == RunStatus::completed && result.stopped_by == "end_time" &&
+        simulation.cycle() >= simulation.controls().max_cycles && simulation.time() < simulation.controls().end_time) {
       result.status = RunStatus::failed;
       result.message = "reached max_cycles before the end time";
+      result.stopped_by = "max_cycles";
     }
   } catch (const NumericalFailure& failure) {
     result.status = RunStatus::failed;
     result.message = failure.what();
+    result.stopped_by = "failure";
   }
   result.wall_seconds = elapsed();
   recorder.finish(simulation, result);
+  return result;
+}
+
+}  // namespace
+
+RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
+  Simulation simulation(scenario.setup);
+  RunRecorder recorder(scenario, simulation,
+                       options.output_directory.empty() ? std::filesystem::path(scenario.output.directory)
+                                                        : options.output_directory,
+                       options.picture);
+  LoopState loop;
+  loop.stop = stop_monitor(scenario);
+  if (loop.stop) (void)loop.stop->observe(simulation.time(), stop_velocity(simulation, *loop.stop));
+  loop.next_checkpoint_time = scenario.output.checkpoint_interval;
+  return run_loop(scenario, simulation, recorder, loop, options);
+}
+
+RunResult restart_scenario(const std::filesystem::path& checkpoint, const RunOptions& options) {
+  const std::filesystem::path resolved = checkpoint.parent_path() / "scenario.resolved.json";
+  if (!std::filesystem::exists(resolved)) {
+    throw InputError(fmt::format("{}: missing; a restart needs the resolved scenario written next to the checkpoint",
+                                 resolved.string()));
+  }
+  return restart_scenario(load_scenario(resolved), checkpoint, options);
+}
+
+RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path& checkpoint_file,
+                           const RunOptions& options) {
+  Checkpoint checkpoint = read_checkpoint(checkpoint_file);
+  std::vector<std::string> warnings;
+  if (checkpoint.scenario_hash != fnv1a(scenario.resolved_json)) {
+    warnings.push_back(fmt::format("the scenario differs from the one {} was taken with; continuing with the "
+                                   "scenario as it is now", checkpoint_file.string()));
+  }
+  Simulation simulation(scenario.setup);
+  simulation.restore(std::move(checkpoint.state));
+  const std::filesystem::path previous = checkpoint_file.parent_path().empty() ? std::filesystem::path(".")
+                                                                               : checkpoint_file.parent_path();
+  const std::filesystem::path directory = options.output_directory.empty() ? previous : options.output_directory;
+  RunRecorder recorder(scenario, simulation, directory, options.picture, checkpoint.progress, previous);
+  LoopState loop;
+  loop.stop = stop_monitor(scenario);
+  if (loop.stop && checkpoint.progress.has_stop_state) loop.stop->restore(checkpoint.progress.stop);
+  loop.next_checkpoint_time = checkpoint.progress.next_checkpoint_time;
+  if (scenario.output.checkpoint_interval > 0.0 && !(loop.next_checkpoint_time > simulation.time())) {
+    loop.next_checkpoint_time = simulation.time() + scenario.output.checkpoint_interval;
+  }
+  loop.previous_wall_seconds = checkpoint.progress.wall_seconds;
+  RunResult result = run_loop(scenario, simulation, recorder, loop, options);
+  result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
   return result;
 }
 

@@ -182,7 +182,11 @@ MeshedBody read_mesh(JsonObject spec, Mesh& mesh, Index body, GeometryKind geome
     p.nose_zones = static_cast<int>(spec.integer("nose_zones", 0, 0, 100000));
     p.shank_zones = static_cast<int>(spec.integer("shank_zones", 0, 0, 1000000));
     p.shank_ratio = spec.number("shank_ratio", 1.0, Range{0.0, 100.0, true});
-    result.patch = generate::nosed_cylinder(mesh, p, body);
+    try {
+      result.patch = generate::nosed_cylinder(mesh, p, body);
+    } catch (const InputError& e) {
+      spec.fail_here(e.what());  // the generator's reason, with the JSON path
+    }
     for (const char* side : {"axis", "nose", "side", "rear"}) result.side_names[side] = side;
   } else {
     const auto radii = read_axis(spec.object("radius"));
@@ -492,18 +496,71 @@ contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bod
   return setup;
 }
 
+OutputSettings read_output(JsonObject output, double end_time, GeometryKind geometry) {
+  OutputSettings o;
+  o.directory = output.text("directory", "");
+  o.history_interval = output.number("history_interval", end_time / 1000.0, Range::non_negative());
+  o.snapshot_interval = output.number("snapshot_interval", end_time / 10.0, Range::non_negative());
+  o.checkpoint_interval = output.number("checkpoint_interval", 0.0, Range::non_negative());
+  o.plots = output.flag("plots", true);
+  {
+    JsonObject pictures = output.object_or_empty("pictures");
+    PictureSettings& p = o.pictures;
+    p.enabled = pictures.flag("enabled", true);
+    p.field = pictures.choice("field", picture_fields(), "density");
+    p.every_snapshot = pictures.flag("every_snapshot", false);
+    p.width = static_cast<int>(pictures.integer("width", p.width, 200, 8000));
+    p.mirror = pictures.flag("mirror", geometry == GeometryKind::axisymmetric);
+    if (const Json* range = pictures.optional_raw("range")) {
+      if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() || !(*range)[1].is_number() ||
+          !std::isfinite((*range)[0].get<double>()) || !std::isfinite((*range)[1].get<double>()) ||
+          !((*range)[0].get<double>() < (*range)[1].get<double>())) {
+        pictures.fail("range", "an array [low, high] of two finite numbers with low < high");
+      }
+      p.range = std::make_pair((*range)[0].get<double>(), (*range)[1].get<double>());
+      pictures.resolve("range", *range);
+    }
+    pictures.finish();
+  }
+  output.finish();
+  return o;
+}
+
+StopRule read_stop_rule(JsonObject spec, const std::vector<Body>& bodies) {
+  StopRule rule;
+  const Json& name = spec.raw("body");
+  rule.body_index = body_index(spec, "body", name, bodies, spec.path_of("body"));
+  rule.body = name.get<std::string>();
+  spec.resolve("body", name);
+  rule.no_contact_time = spec.number("no_contact_time", Range::positive());
+  rule.velocity_change = spec.number("velocity_change", rule.velocity_change, Range{0.0, 1.0, true});
+  spec.finish();
+  return rule;
+}
+
 }  // namespace
+
+const std::vector<std::string>& picture_fields() {
+  static const std::vector<std::string> fields = {"density", "pressure", "specific_internal_energy",
+                                                  "equivalent_plastic_strain", "damaged", "sound_speed",
+                                                  "speed", "body"};
+  return fields;
+}
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
   Json document;
   try {
     document = Json::parse(json_text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // syntax errors, and numbers too large for a double (1e400)
     throw InputError(fmt::format("{}: not valid JSON: {}", origin, e.what()));
   }
   Scenario scenario;
   Json resolved = Json::object();
   JsonObject top(document, "", &resolved);
+  if (const Json* schema = top.optional_raw("$schema")) {
+    // Lets an editor find docs/scenario.schema.json; not copied to the resolved scenario.
+    if (!schema->is_string()) top.fail("$schema", "a string (the schema's address, ignored)");
+  }
   scenario.title = top.text("title", "");
   top.text("description", "");
   const std::string geometry_name = top.choice("geometry", {"planar", "axisymmetric"});
@@ -591,12 +648,9 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   setup.contact = read_contact(top.object_or_empty("contact"), setup.bodies, geometry, fracturing);
 
   setup.controls = read_controls(top.object_or_empty("controls"), end_time);
-  {
-    JsonObject output = top.object_or_empty("output");
-    scenario.output.directory = output.text("directory", "");
-    scenario.output.history_interval = output.number("history_interval", end_time / 1000.0, Range::non_negative());
-    scenario.output.snapshot_interval = output.number("snapshot_interval", end_time / 10.0, Range::non_negative());
-    output.finish();
+  scenario.output = read_output(top.object_or_empty("output"), end_time, geometry);
+  if (auto stop = top.optional_object("stop")) {
+    scenario.stop = read_stop_rule(*stop, setup.bodies);
   }
   top.finish();
   scenario.resolved_json = resolved.dump(2);

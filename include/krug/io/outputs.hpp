@@ -4,10 +4,12 @@
 // temporary name and renamed, so a reader never sees half a file.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "krug/io/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 
@@ -19,7 +21,18 @@ struct RunResult {
   RunStatus status = RunStatus::completed;
   std::string message;
   double wall_seconds = 0.0;
+  // Why the run ended: "end_time", "stop rule", "interrupted", "failure", "max_cycles" or "request"
+  // (the caller's on_cycle said stop). summary.json field "stopped_by".
+  std::string stopped_by = "end_time";
+  std::filesystem::path checkpoint;    // the checkpoint written last, if any
+  std::vector<std::string> warnings;   // for the user (e.g. a restart whose scenario was edited)
 };
+
+// Picture of the current state (the app draws PNGs with Cairo when it has it): called for the
+// initial state ("initial", or "state_00000" with pictures.every_snapshot), every snapshot
+// ("state_NNNNN", with pictures.every_snapshot) and the final state ("final").
+using PictureHook = std::function<void(const Simulation& simulation, const std::filesystem::path& directory,
+                                       const std::string& name)>;
 
 void write_text_atomically(const std::filesystem::path& file, const std::string& text);
 void write_vtu(const Simulation& simulation, const std::filesystem::path& file);
@@ -30,7 +43,13 @@ std::string summary_json(const Simulation& simulation, const RunResult& result);
 // Writes history rows and snapshots while a run goes on, and the final files when it ends.
 class RunRecorder {
  public:
-  RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory);
+  RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
+              PictureHook picture_hook = {});
+  // Continues the outputs of a run restarted from a checkpoint taken in `previous_directory`:
+  // history.csv is cut back to its length at the checkpoint (copied first when the directory is
+  // another one, with the snapshots listed so far) and the output schedule goes on where it was.
+  RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
+              PictureHook picture_hook, const RunProgress& resume, const std::filesystem::path& previous_directory);
   ~RunRecorder();
   RunRecorder(const RunRecorder&) = delete;
   RunRecorder& operator=(const RunRecorder&) = delete;
@@ -38,18 +57,26 @@ class RunRecorder {
   void observe(const Simulation& simulation);  // after every cycle
   void finish(const Simulation& simulation, const RunResult& result);
   const std::filesystem::path& directory() const { return directory_; }
+  // The recorder's part of a checkpoint (history.csv is flushed first).
+  RunProgress progress();
 
  private:
+  void open(const Scenario& scenario);  // the directory and scenario.resolved.json
+  static std::string history_header(const Simulation& simulation);
+  void append_history(const std::string& text);
   void write_history_row(const Simulation& simulation);
   void write_snapshot(const Simulation& simulation);
+  void picture(const Simulation& simulation, const std::string& name);
 
   std::filesystem::path directory_;
   OutputSettings settings_;
   std::ofstream history_;
+  std::uint64_t history_bytes_ = 0;  // written to history.csv so far
   double next_history_time_ = 0.0;
   double next_snapshot_time_ = 0.0;
   std::vector<std::pair<double, std::string>> snapshots_;  // time, file relative to directory_
   std::vector<std::pair<double, std::string>> particle_snapshots_;
+  PictureHook picture_;
 };
 
 }  // namespace krug::io

@@ -1,5 +1,8 @@
 #pragma once
-// Running a scenario to its end time with outputs: the loop the app and the tests share.
+// Running a scenario to its end time with outputs: the loop the app and the tests share. The loop
+// also takes checkpoints (output.checkpoint_interval, and always when interrupted), applies the
+// stop rule (scenario key "stop") and continues runs from checkpoints.
+#include <atomic>
 #include <filesystem>
 #include <functional>
 
@@ -9,13 +12,26 @@
 namespace krug::io {
 
 struct RunOptions {
-  std::filesystem::path output_directory;  // empty: the scenario's own
+  std::filesystem::path output_directory;  // empty: the scenario's own (restart: the checkpoint's)
   // Called after each cycle with the wall time so far; return false to stop (status "failed").
   std::function<bool(const Simulation&, double elapsed_seconds)> on_cycle;
+  // Set from outside (a signal handler) to interrupt: the loop writes DIR/checkpoint.bin and ends the
+  // run with status "failed", message "interrupted", stopped_by "interrupted".
+  const std::atomic<bool>* interrupt = nullptr;
+  // Pictures of the states (the app's PNG writer); none when empty.
+  PictureHook picture;
 };
 
-// Runs to the end time or to a numerical failure; never throws NumericalFailure (it is reported in
-// the result and in summary.json). InputError from the setup propagates.
+// Runs to the end time, to the stop rule or to a numerical failure; never throws NumericalFailure
+// (it is reported in the result and in summary.json). InputError from the setup propagates.
 RunResult run_scenario(const Scenario& scenario, const RunOptions& options);
+
+// Continues a run from a checkpoint, with the scenario stored next to it (scenario.resolved.json,
+// which may have been edited, e.g. a later end_time: the result then says so in `warnings`).
+// Outputs go to options.output_directory, or by default to the checkpoint's directory.
+RunResult restart_scenario(const std::filesystem::path& checkpoint, const RunOptions& options);
+// The same with a scenario given by the caller (it must describe the same mesh).
+RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path& checkpoint,
+                           const RunOptions& options);
 
 }  // namespace krug::io

@@ -3,16 +3,47 @@
 // The format is documented in docs/scenario-format.md. Every error is an InputError naming the
 // JSON path, the value found and what was expected.
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "krug/solver/simulation.hpp"
 
 namespace krug::io {
 
+// PNG pictures of the bodies and particles coloured by one field (written by the app when it is built
+// with Cairo; see docs/outputs.md).
+struct PictureSettings {
+  bool enabled = true;
+  std::string field = "density";  // one of picture_fields()
+  bool every_snapshot = false;    // false: the initial and the final state only
+  int width = 1200;               // pixels
+  bool mirror = false;            // axisymmetric: also draw the mirror image below the axis
+  std::optional<std::pair<double, double>> range;  // fixed colour range; default: the field's extent
+};
+
+// Names of the fields a picture can show.
+const std::vector<std::string>& picture_fields();
+
 struct OutputSettings {
-  std::string directory;          // default: "out/<scenario file stem>"; `krug run --out` overrides
-  double history_interval = 0.0;  // s between rows of history.csv (0: every cycle)
-  double snapshot_interval = 0.0; // s between VTK snapshots (0: initial and final state only)
+  std::string directory;            // default: "out/<scenario file stem>"; `krug run --out` overrides
+  double history_interval = 0.0;    // s between rows of history.csv (0: every cycle)
+  double snapshot_interval = 0.0;   // s between VTK snapshots (0: initial and final state only)
+  double checkpoint_interval = 0.0; // s between checkpoints (0: none, apart from an interruption)
+  PictureSettings pictures;
+  bool plots = true;                // plots of history.csv (by the app, with Python and matplotlib)
+};
+
+// Ends a projectile run early (status "completed", summary "stopped_by": "stop rule") once the named
+// body has felt no contact for `no_contact_time`: its mass-weighted mean velocity (momentum / mass,
+// which only external forces change) has stayed within `velocity_change` x its initial speed over
+// that window, after having changed by more than that (the rule arms at the first interaction).
+// The exact rule is in docs/scenario-format.md ("Stop rule").
+struct StopRule {
+  std::string body;
+  Index body_index = 0;
+  double no_contact_time = 0.0;   // s
+  double velocity_change = 0.01;  // fraction of the body's initial speed
 };
 
 struct Scenario {
@@ -20,6 +51,7 @@ struct Scenario {
   std::filesystem::path source;
   SimulationSetup setup;
   OutputSettings output;
+  std::optional<StopRule> stop;
   std::string resolved_json;  // the scenario as read, every default filled in
 };
 

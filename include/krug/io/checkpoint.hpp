@@ -1,0 +1,53 @@
+#pragma once
+// Checkpoint files (DIR/checkpoint.bin): the SimulationState of a run and the run loop's own
+// progress (output schedule, snapshot list, length of history.csv, stop-rule window, wall time),
+// so that `krug run --restart` continues the run as if it had never stopped.
+//
+// Format (version 1), little-endian, native doubles:
+//   "KRUGCKPT"  u32 version  u32 0x01020304 (byte order)  u32 sizeof(double)  u32 sizeof(Index)
+//   u64 FNV-1a hash of the resolved scenario text the run started from
+//   the state and progress, field by field: a vector is a u64 count and its raw elements,
+//   a string a u64 length and its bytes
+//   u64 FNV-1a hash of every byte before it, then "KRUGEND!"
+// The file is written under a temporary name and renamed. A file that is truncated, corrupted,
+// of another version or from another machine layout is refused with an InputError.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "krug/io/stop_rule.hpp"
+#include "krug/solver/simulation.hpp"
+
+namespace krug::io {
+
+inline constexpr std::uint32_t checkpoint_version = 1;
+
+// What the run loop and the recorder need, besides the simulation, to continue their outputs.
+struct RunProgress {
+  double next_history_time = 0.0;
+  double next_snapshot_time = 0.0;
+  double next_checkpoint_time = 0.0;
+  std::vector<std::pair<double, std::string>> snapshots;           // time, file relative to the directory
+  std::vector<std::pair<double, std::string>> particle_snapshots;
+  std::uint64_t history_bytes = 0;   // length of history.csv when the checkpoint was taken
+  double wall_seconds = 0.0;         // wall time of the run so far
+  bool has_stop_state = false;
+  StopMonitor::State stop;
+};
+
+struct Checkpoint {
+  SimulationState state;
+  RunProgress progress;
+  std::uint64_t scenario_hash = 0;
+};
+
+// FNV-1a, 64 bits.
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);
+
+void write_checkpoint(const std::filesystem::path& file, const SimulationState& state, const RunProgress& progress,
+                      std::uint64_t scenario_hash);
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+}  // namespace krug::io

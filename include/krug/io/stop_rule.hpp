@@ -1,0 +1,48 @@
+#pragma once
+// The stop rule of a projectile run (scenario key "stop"; docs/scenario-format.md, "Stop rule").
+//
+// V(t) is the body's mass-weighted mean velocity (its momentum over its mass), sampled at the end of
+// every cycle. Internal waves do not change it; only external forces do (contact, boundary
+// conditions) and, slightly, mass leaving with converted zones. With S the body's initial speed
+// |V(0)| (or, for a body that starts at rest, the largest |V| seen so far) and f = velocity_change:
+//   * the rule arms at the first sample with |V(t) - V(0)| > f S (the body has been hit);
+//   * once armed, the run stops at the first sample t with t - t_armed >= no_contact_time at which
+//     each component of V has stayed within f S of its current value over the window
+//     [t - no_contact_time, t]: no contact impulse larger than f S times the body's mass.
+// Each component's window extremes are kept in monotonic queues (O(1) per cycle).
+#include <deque>
+#include <utility>
+
+#include "krug/core/vec2.hpp"
+#include "krug/io/scenario.hpp"
+
+namespace krug::io {
+
+class StopMonitor {
+ public:
+  // A (time, value) sample; the queues hold the window's candidate maxima and minima.
+  using Sample = std::pair<double, double>;
+  struct State {
+    bool started = false;
+    Vec2 initial_velocity;
+    double scale = 0.0;       // S
+    bool armed = false;
+    double armed_time = 0.0;
+    std::deque<Sample> max_x, min_x, max_y, min_y;
+  };
+
+  explicit StopMonitor(StopRule rule) : rule_(std::move(rule)) {}
+
+  // After every cycle (and once at the start): true when the run should stop.
+  bool observe(double time, Vec2 velocity);
+
+  const StopRule& rule() const { return rule_; }
+  const State& state() const { return state_; }
+  void restore(State state) { state_ = std::move(state); }
+
+ private:
+  StopRule rule_;
+  State state_;
+};
+
+}  // namespace krug::io

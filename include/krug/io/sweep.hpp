@@ -1,0 +1,42 @@
+#pragma once
+// Parameter sweeps (`krug sweep`): variants of one scenario, the cartesian product of values given
+// for JSON paths, each written to DIR/<variant>/scenario.json and run by the app in its own
+// process; DIR/sweep.csv collects their inputs and summary figures. Paths are written like
+// materials.al6061.fracture.elongation or bodies[0].initial.velocity[0]; a missing object on the
+// way is created (so a default can be overridden), a missing array item is an error.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace krug::io {
+
+struct SweepParameter {
+  std::string path;                 // as given
+  std::vector<std::string> values;  // JSON texts (a value that is not JSON is taken as a string)
+};
+
+struct SweepVariant {
+  std::string name;                 // "003_elongation=0.3_velocity0=350": index, then leaf=value
+  std::vector<std::string> values;  // one JSON text per parameter
+  std::filesystem::path directory;  // DIR/<name>
+  std::filesystem::path scenario;   // DIR/<name>/scenario.json
+};
+
+// "PATH=V1,V2,..." (values split at commas outside brackets, braces and quotes). InputError when
+// malformed.
+SweepParameter parse_sweep_set(const std::string& argument);
+
+// Writes every variant's scenario under `directory` after checking it with the scenario reader
+// (an InputError names the variant and the reader's complaint). First parameter varies slowest.
+std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_file,
+                                        const std::vector<SweepParameter>& parameters,
+                                        const std::filesystem::path& directory);
+
+// Writes DIR/sweep.csv: variant, one column per parameter, then from each DIR/<variant>/summary.json
+// status, stopped_by, time, cycles, wall_seconds, energy_drift, mass_error, particles, and per body
+// velocity (both components) and active zones, then message. A variant without a summary has
+// status "not run".
+void write_sweep_table(const std::filesystem::path& directory, const std::vector<SweepParameter>& parameters,
+                       const std::vector<SweepVariant>& variants);
+
+}  // namespace krug::io

@@ -1,0 +1,313 @@
+// Checkpoint files: a versioned binary image of SimulationState and of the run loop's progress.
+#include "krug/io/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "krug/core/error.hpp"
+#include "krug/io/outputs.hpp"
+
+namespace krug::io {
+
+namespace {
+
+constexpr char magic[8] = {'K', 'R', 'U', 'G', 'C', 'K', 'P', 'T'};
+constexpr char end_magic[8] = {'K', 'R', 'U', 'G', 'E', 'N', 'D', '!'};
+constexpr std::uint32_t byte_order_mark = 0x01020304;
+
+// Every field of the state is written by name below. When a field is added to one of these
+// structures, these sizes change and the build stops here: add the field to write_state() and
+// read_state() (and raise checkpoint_version), or a restart would silently lose it.
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(NodeFields) == 14 * 24,
+              "NodeFields changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 29 * 24 + 8,
+              "ZoneFields changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(Particles) == 10 * 24,
+              "Particles changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/io/checkpoint.cpp");
+static_assert(sizeof(std::vector<double>) != 24 ||
+                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 2 * 24 + 9 * 8,
+              "SimulationState changed: update src/io/checkpoint.cpp");
+
+class Writer {
+ public:
+  template <class T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <class T>
+  void vector(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    value(static_cast<std::uint64_t>(v.size()));
+    if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void text(const std::string& s) {
+    value(static_cast<std::uint64_t>(s.size()));
+    bytes_.append(s);
+  }
+  void raw(const char* data, std::size_t size) { bytes_.append(data, size); }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t end, std::string file) : bytes_(bytes), end_(end), file_(std::move(file)) {}
+
+  template <class T>
+  T value() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, bytes_.data() + position_, sizeof(T));
+    position_ += sizeof(T);
+    return v;
+  }
+  template <class T>
+  void vector(std::vector<T>& v) {
+    const auto count = value<std::uint64_t>();
+    if (count > (end_ - position_) / sizeof(T)) corrupt("a field longer than the file");
+    v.resize(static_cast<std::size_t>(count));
+    if (count > 0) std::memcpy(v.data(), bytes_.data() + position_, v.size() * sizeof(T));
+    position_ += v.size() * sizeof(T);
+  }
+  std::string text() {
+    const auto size = value<std::uint64_t>();
+    if (size > end_ - position_) corrupt("a text longer than the file");
+    std::string s = bytes_.substr(position_, static_cast<std::size_t>(size));
+    position_ += s.size();
+    return s;
+  }
+  void expect(const char* data, std::size_t size, const char* what) {
+    need(size);
+    if (std::memcmp(bytes_.data() + position_, data, size) != 0) corrupt(what);
+    position_ += size;
+  }
+  std::size_t position() const { return position_; }
+  [[noreturn]] void corrupt(const std::string& what) const {
+    throw InputError(fmt::format("{}: not a usable Krug checkpoint: {}", file_, what));
+  }
+
+ private:
+  void need(std::size_t size) const {
+    if (size > end_ - position_) corrupt("the file ends early (truncated?)");
+  }
+  const std::string& bytes_;
+  std::size_t position_ = 0;
+  std::size_t end_;
+  std::string file_;
+};
+
+// The same list of fields, in the same order, for writing and reading: `io` is a Writer or a
+// Reader and `field` is applied to each vector, `scalar` to each value.
+template <class Io, class MeshT>
+void mesh_fields(Io& io, MeshT& mesh) {
+  auto& n = mesh.nodes;
+  for (auto* v : {&n.x, &n.y, &n.u, &n.v, &n.u_old, &n.v_old, &n.force_x, &n.force_y, &n.mass, &n.x0, &n.y0,
+                  &n.inv_mass_x, &n.inv_mass_y}) {
+    io.vector(*v);
+  }
+  io.vector(n.body);
+  auto& z = mesh.zones;
+  io.vector(z.corners);
+  io.vector(z.body);
+  io.vector(z.active);
+  for (auto* v : {&z.mass, &z.density, &z.specific_energy, &z.pressure, &z.sound_speed, &z.volume, &z.area,
+                  &z.viscous_speed, &z.volume_change, &z.corner_force, &z.deviator_xx, &z.deviator_yy,
+                  &z.deviator_xy, &z.deviator_zz, &z.plastic_strain, &z.hourglass_x, &z.hourglass_y}) {
+    io.vector(*v);
+  }
+  io.vector(z.edge_before);
+  io.vector(z.edge_after);
+  io.vector(z.neighbour);
+  io.vector(z.corner_mass);
+  io.vector(z.damaged);
+  io.vector(z.damage_time);
+  io.vector(z.damage_criterion);
+  io.vector(z.initial_altitude);
+  io.vector(z.stable_time_step);
+}
+
+template <class Io, class ParticlesT>
+void particle_fields(Io& io, ParticlesT& p) {
+  for (auto* v : {&p.x, &p.y, &p.u, &p.v, &p.u_old, &p.v_old, &p.mass, &p.radius}) io.vector(*v);
+  io.vector(p.body);
+  io.vector(p.birth_time);
+}
+
+struct TimedValue {
+  double time, value;
+};
+
+std::vector<TimedValue> items_of(const std::deque<StopMonitor::Sample>& queue) {
+  std::vector<TimedValue> items;
+  for (const auto& [time, value] : queue) items.push_back({time, value});
+  return items;
+}
+
+}  // namespace
+
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash) {
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+void write_checkpoint(const std::filesystem::path& file, const SimulationState& s, const RunProgress& progress,
+                      std::uint64_t scenario_hash) {
+  Writer w;
+  w.raw(magic, sizeof magic);
+  w.value(checkpoint_version);
+  w.value(byte_order_mark);
+  w.value(static_cast<std::uint32_t>(sizeof(double)));
+  w.value(static_cast<std::uint32_t>(sizeof(Index)));
+  w.value(scenario_hash);
+  // State.
+  mesh_fields(w, s.mesh);
+  w.value(static_cast<std::uint8_t>(s.mesh.zones.neighbours_built));
+  particle_fields(w, s.particles);
+  w.value(s.ledger);
+  w.vector(s.fracture_counts);
+  w.vector(s.zones_per_node);
+  w.value(s.time);
+  w.value(static_cast<std::int64_t>(s.cycle));
+  w.value(static_cast<std::int64_t>(s.zone_cycles));
+  w.value(s.time_step_previous);
+  w.value(s.time_step_next);
+  w.value(s.time_step_floor);
+  w.value(s.stable_time_step);
+  w.value(s.controlling_zone);
+  w.value(s.deepest_contact_gap);
+  // Progress.
+  w.value(progress.next_history_time);
+  w.value(progress.next_snapshot_time);
+  w.value(progress.next_checkpoint_time);
+  for (const auto* list : {&progress.snapshots, &progress.particle_snapshots}) {
+    w.value(static_cast<std::uint64_t>(list->size()));
+    for (const auto& [time, name] : *list) {
+      w.value(time);
+      w.text(name);
+    }
+  }
+  w.value(progress.history_bytes);
+  w.value(progress.wall_seconds);
+  w.value(static_cast<std::uint8_t>(progress.has_stop_state));
+  const StopMonitor::State& stop = progress.stop;
+  w.value(static_cast<std::uint8_t>(stop.started));
+  w.value(stop.initial_velocity);
+  w.value(stop.scale);
+  w.value(static_cast<std::uint8_t>(stop.armed));
+  w.value(stop.armed_time);
+  for (const auto* q : {&stop.max_x, &stop.min_x, &stop.max_y, &stop.min_y}) {
+    w.vector(items_of(*q));
+  }
+  w.value(fnv1a(w.bytes()));
+  w.raw(end_magic, sizeof end_magic);
+  write_text_atomically(file, w.bytes());
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open the checkpoint", file.string()));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string bytes = buffer.str();
+  const std::string name = file.string();
+  constexpr std::size_t trailer = sizeof(std::uint64_t) + sizeof end_magic;
+  if (bytes.size() < sizeof magic + trailer) Reader(bytes, bytes.size(), name).corrupt("the file is too short");
+  const std::size_t body_end = bytes.size() - trailer;
+  {
+    Reader tail(bytes, bytes.size(), name);
+    if (std::memcmp(bytes.data(), magic, sizeof magic) != 0) tail.corrupt("it does not start with KRUGCKPT");
+    if (std::memcmp(bytes.data() + body_end + sizeof(std::uint64_t), end_magic, sizeof end_magic) != 0) {
+      tail.corrupt("the end marker is missing (truncated?)");
+    }
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, bytes.data() + body_end, sizeof stored);
+    if (stored != fnv1a(bytes.substr(0, body_end))) tail.corrupt("the checksum does not match (corrupted)");
+  }
+  Reader r(bytes, body_end, name);
+  r.expect(magic, sizeof magic, "it does not start with KRUGCKPT");
+  const auto version = r.value<std::uint32_t>();
+  if (version != checkpoint_version) {
+    r.corrupt(fmt::format("format version {}, this krug reads version {}", version, checkpoint_version));
+  }
+  if (r.value<std::uint32_t>() != byte_order_mark) r.corrupt("written on a machine of another byte order");
+  if (r.value<std::uint32_t>() != sizeof(double) || r.value<std::uint32_t>() != sizeof(Index)) {
+    r.corrupt("written with other number sizes");
+  }
+  Checkpoint c;
+  c.scenario_hash = r.value<std::uint64_t>();
+  SimulationState& s = c.state;
+  mesh_fields(r, s.mesh);
+  s.mesh.zones.neighbours_built = r.value<std::uint8_t>() != 0;
+  particle_fields(r, s.particles);
+  s.ledger = r.value<Ledger>();
+  r.vector(s.fracture_counts);
+  r.vector(s.zones_per_node);
+  s.time = r.value<double>();
+  s.cycle = static_cast<long>(r.value<std::int64_t>());
+  s.zone_cycles = static_cast<long>(r.value<std::int64_t>());
+  s.time_step_previous = r.value<double>();
+  s.time_step_next = r.value<double>();
+  s.time_step_floor = r.value<double>();
+  s.stable_time_step = r.value<double>();
+  s.controlling_zone = r.value<Index>();
+  s.deepest_contact_gap = r.value<double>();
+  RunProgress& p = c.progress;
+  p.next_history_time = r.value<double>();
+  p.next_snapshot_time = r.value<double>();
+  p.next_checkpoint_time = r.value<double>();
+  for (auto* list : {&p.snapshots, &p.particle_snapshots}) {
+    const auto count = r.value<std::uint64_t>();
+    if (count > body_end) r.corrupt("a snapshot list longer than the file");
+    for (std::uint64_t i = 0; i < count; ++i) {
+      const double time = r.value<double>();
+      list->emplace_back(time, r.text());
+    }
+  }
+  p.history_bytes = r.value<std::uint64_t>();
+  p.wall_seconds = r.value<double>();
+  p.has_stop_state = r.value<std::uint8_t>() != 0;
+  StopMonitor::State& stop = p.stop;
+  stop.started = r.value<std::uint8_t>() != 0;
+  stop.initial_velocity = r.value<Vec2>();
+  stop.scale = r.value<double>();
+  stop.armed = r.value<std::uint8_t>() != 0;
+  stop.armed_time = r.value<double>();
+  for (auto* q : {&stop.max_x, &stop.min_x, &stop.max_y, &stop.min_y}) {
+    std::vector<TimedValue> items;
+    r.vector(items);
+    q->clear();
+    for (const TimedValue& item : items) q->emplace_back(item.time, item.value);
+  }
+  if (r.position() != body_end) r.corrupt("unexpected bytes after the last field");
+  // Consistency of the sizes read (a checkpoint that passed its checksum but was written wrongly).
+  const auto nodes = s.mesh.nodes.x.size();
+  const auto zones = s.mesh.zones.corners.size();
+  for (const auto* v : {&s.mesh.nodes.y, &s.mesh.nodes.u, &s.mesh.nodes.v, &s.mesh.nodes.mass}) {
+    if (v->size() != nodes) r.corrupt("node fields of different lengths");
+  }
+  if (s.mesh.zones.density.size() != zones || s.mesh.zones.active.size() != zones) {
+    r.corrupt("zone fields of different lengths");
+  }
+  for (const ZoneCorners& corners : s.mesh.zones.corners) {
+    for (Index n : corners) {
+      if (n < 0 || static_cast<std::size_t>(n) >= nodes) r.corrupt("a zone corner outside the node range");
+    }
+  }
+  return c;
+}
+
+}  // namespace krug::io

@@ -1,0 +1,329 @@
+// Parameter sweeps: variants of a scenario by JSON path, and the table of their results.
+#include "krug/io/sweep.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "krug/core/error.hpp"
+#include "krug/io/outputs.hpp"
+#include "krug/io/scenario.hpp"
+
+namespace krug::io {
+
+namespace {
+
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;  // variants keep the file's key order
+
+// One step of a path: a key or an array index.
+struct Step {
+  std::string key;
+  long index = -1;  // >= 0: an array index
+};
+
+std::vector<Step> parse_path(const std::string& path) {
+  std::vector<Step> steps;
+  std::size_t i = 0;
+  auto bad = [&](const std::string& why) -> std::vector<Step> {
+    throw InputError(fmt::format("--set {}: {} (write a path like materials.steel.density or "
+                                 "bodies[0].initial.velocity[0])", path, why));
+  };
+  while (i < path.size()) {
+    if (path[i] == '[') {
+      const auto close = path.find(']', i);
+      if (close == std::string::npos) return bad("an unclosed [");
+      const std::string digits = path.substr(i + 1, close - i - 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) {
+        return bad("an array index must be a number");
+      }
+      steps.push_back({"", std::stol(digits)});
+      i = close + 1;
+      if (i < path.size() && path[i] == '.') ++i;
+    } else {
+      const auto end = path.find_first_of(".[", i);
+      const std::string key = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      if (key.empty()) return bad("an empty key");
+      steps.push_back({key, -1});
+      i = end == std::string::npos ? path.size() : end;
+      if (i < path.size() && path[i] == '.') ++i;
+    }
+  }
+  if (steps.empty()) return bad("an empty path");
+  return steps;
+}
+
+void set_path(OrderedJson& document, const SweepParameter& parameter, const OrderedJson& value) {
+  const std::vector<Step> steps = parse_path(parameter.path);
+  OrderedJson* at = &document;
+  std::string where;
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    const Step& step = steps[s];
+    const bool last = s + 1 == steps.size();
+    if (step.index >= 0) {
+      if (!at->is_array()) {
+        throw InputError(fmt::format("--set {}: {} is not an array", parameter.path, where.empty() ? "(top level)" : where));
+      }
+      if (static_cast<std::size_t>(step.index) >= at->size()) {
+        throw InputError(fmt::format("--set {}: {} has {} items", parameter.path, where, at->size()));
+      }
+      where += fmt::format("[{}]", step.index);
+      at = &(*at)[static_cast<std::size_t>(step.index)];
+    } else {
+      if (!at->is_object()) {
+        throw InputError(fmt::format("--set {}: {} is not an object", parameter.path, where.empty() ? "(top level)" : where));
+      }
+      where += (where.empty() ? "" : ".") + step.key;
+      if (!at->contains(step.key)) {
+        if (!last && steps[s + 1].index >= 0) {
+          throw InputError(fmt::format("--set {}: {} does not exist", parameter.path, where));
+        }
+        (*at)[step.key] = OrderedJson::object();  // a default made explicit
+      }
+      at = &(*at)[step.key];
+    }
+    if (last) *at = value;
+  }
+}
+
+// The value as JSON if it is JSON, else as a string (material names, models).
+OrderedJson value_of(const std::string& text) {
+  try {
+    return OrderedJson::parse(text);
+  } catch (const nlohmann::json::exception&) {
+    return OrderedJson(text);
+  }
+}
+
+std::string leaf_name(const std::string& path) {
+  const std::vector<Step> steps = parse_path(path);
+  std::string name;
+  std::size_t s = steps.size();
+  while (s > 0 && steps[s - 1].index >= 0) --s;  // indices after the last key
+  name = s > 0 ? steps[s - 1].key : "item";
+  for (std::size_t k = s; k < steps.size(); ++k) name += std::to_string(steps[k].index);
+  return name;
+}
+
+std::string file_safe(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                    c == '-' || c == '+' || c == '_';
+    out += ok ? c : '_';
+  }
+  return out.substr(0, 40);
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c == '\n' ? ' ' : c;
+  }
+  return quoted + "\"";
+}
+
+std::string csv_number(const Json& value) {
+  if (value.is_number_integer()) return value.dump();
+  if (value.is_number()) return fmt::format("{:.9g}", value.get<double>());
+  if (value.is_null()) return "";
+  return csv_field(value.is_string() ? value.get<std::string>() : value.dump());
+}
+
+}  // namespace
+
+SweepParameter parse_sweep_set(const std::string& argument) {
+  const auto equals = argument.find('=');
+  if (equals == std::string::npos || equals == 0 || equals + 1 >= argument.size()) {
+    throw InputError(fmt::format("--set {}: expected PATH=VALUE1,VALUE2,...", argument));
+  }
+  SweepParameter p;
+  p.path = argument.substr(0, equals);
+  (void)parse_path(p.path);
+  const std::string list = argument.substr(equals + 1);
+  int depth = 0;
+  bool in_string = false;
+  std::string current;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const char c = list[i];
+    if (in_string) {
+      if (c == '\\' && i + 1 < list.size()) {
+        current += c;
+        current += list[++i];
+        continue;
+      }
+      if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    } else if (c == ',' && depth == 0) {
+      p.values.push_back(current);
+      current.clear();
+      continue;
+    }
+    current += c;
+  }
+  p.values.push_back(current);
+  for (const std::string& v : p.values) {
+    if (v.empty()) throw InputError(fmt::format("--set {}: an empty value", argument));
+  }
+  return p;
+}
+
+std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_file,
+                                        const std::vector<SweepParameter>& parameters,
+                                        const std::filesystem::path& directory) {
+  std::ifstream in(scenario_file);
+  if (!in) throw InputError(fmt::format("{}: cannot open the scenario file", scenario_file.string()));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  OrderedJson base;
+  try {
+    base = OrderedJson::parse(buffer.str());
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", scenario_file.string(), e.what()));
+  }
+  if (parameters.empty()) throw InputError("krug sweep: give at least one --set PATH=VALUE1,VALUE2,...");
+  std::size_t count = 1;
+  for (const SweepParameter& p : parameters) {
+    count *= p.values.size();
+    if (count > 100000) throw InputError("krug sweep: more than 100000 variants");
+  }
+  std::vector<SweepVariant> variants;
+  for (std::size_t v = 0; v < count; ++v) {
+    SweepVariant variant;
+    OrderedJson document = base;
+    std::size_t rest = v;
+    std::vector<std::size_t> choice(parameters.size());
+    for (std::size_t k = parameters.size(); k-- > 0;) {  // last parameter varies fastest
+      choice[k] = rest % parameters[k].values.size();
+      rest /= parameters[k].values.size();
+    }
+    variant.name = fmt::format("{:03d}", v);
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      const std::string& text = parameters[k].values[choice[k]];
+      const OrderedJson value = value_of(text);
+      set_path(document, parameters[k], value);
+      variant.values.push_back(value.dump());
+      variant.name += fmt::format("_{}={}", file_safe(leaf_name(parameters[k].path)),
+                                  file_safe(value.is_string() ? value.get<std::string>() : value.dump()));
+    }
+    variant.directory = directory / variant.name;
+    variant.scenario = variant.directory / "scenario.json";
+    const std::string text = document.dump(2) + "\n";
+    try {
+      (void)parse_scenario(text, variant.scenario.string());
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("krug sweep: variant {} is not a valid scenario: {}", variant.name, e.what()));
+    }
+    variants.push_back(variant);
+  }
+  for (const SweepVariant& variant : variants) {
+    std::error_code error;
+    std::filesystem::create_directories(variant.directory, error);
+    if (error) throw InputError(fmt::format("{}: cannot create: {}", variant.directory.string(), error.message()));
+    OrderedJson document = base;
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      set_path(document, parameters[k], OrderedJson::parse(variant.values[k]));
+    }
+    write_text_atomically(variant.scenario, document.dump(2) + "\n");
+  }
+  return variants;
+}
+
+void write_sweep_table(const std::filesystem::path& directory, const std::vector<SweepParameter>& parameters,
+                       const std::vector<SweepVariant>& variants) {
+  std::vector<Json> summaries;
+  std::vector<std::string> bodies;  // in order of first appearance
+  std::vector<std::string> axes = {"x", "y"};
+  for (const SweepVariant& variant : variants) {
+    Json summary;
+    std::ifstream in(variant.directory / "summary.json");
+    if (in) {
+      try {
+        in >> summary;
+      } catch (const nlohmann::json::exception&) {
+        summary = Json();
+      }
+    }
+    if (summary.is_object()) {
+      if (summary.contains("axes") && summary["axes"].is_array() && summary["axes"].size() == 2) {
+        axes = {summary["axes"][0].get<std::string>(), summary["axes"][1].get<std::string>()};
+      }
+      if (summary.contains("bodies") && summary["bodies"].is_object()) {
+        for (const auto& [name, _] : summary["bodies"].items()) {
+          if (std::find(bodies.begin(), bodies.end(), name) == bodies.end()) bodies.push_back(name);
+        }
+      }
+    }
+    summaries.push_back(summary);
+  }
+  std::vector<std::string> header = {"variant"};
+  for (const SweepParameter& p : parameters) header.push_back(p.path);
+  for (const char* column : {"status", "stopped_by", "time", "cycles", "wall_seconds", "energy_drift", "mass_error",
+                             "particles"}) {
+    header.emplace_back(column);
+  }
+  for (const std::string& b : bodies) {
+    for (const std::string& column : {"v" + axes[0], "v" + axes[1], std::string("mass"), std::string("zones")}) {
+      header.push_back(fmt::format("{}_{}", b, column));
+    }
+  }
+  header.emplace_back("message");
+  std::string table;
+  auto add_row = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (c > 0) table.push_back(',');
+      table.append(cells[c]);
+    }
+    table.push_back('\n');
+  };
+  std::vector<std::string> header_cells;
+  for (const std::string& h : header) header_cells.push_back(csv_field(h));
+  add_row(header_cells);
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const Json& s = summaries[v];
+    std::vector<std::string> cells = {csv_field(variants[v].name)};
+    for (const std::string& value : variants[v].values) {
+      const Json parsed = Json::parse(value);
+      cells.push_back(parsed.is_string() ? csv_field(parsed.get<std::string>()) : csv_field(value));
+    }
+    auto get = [&](std::initializer_list<const char*> path) -> Json {
+      const Json* at = &s;
+      for (const char* key : path) {
+        if (!at->is_object() || !at->contains(key)) return Json();
+        at = &(*at)[key];
+      }
+      return *at;
+    };
+    cells.push_back(s.is_object() ? csv_number(get({"status"})) : std::string("not run"));
+    cells.push_back(csv_number(get({"stopped_by"})));
+    cells.push_back(csv_number(get({"time"})));
+    cells.push_back(csv_number(get({"cycles"})));
+    cells.push_back(csv_number(get({"wall_seconds"})));
+    cells.push_back(csv_number(get({"ledger", "energy", "relative_drift"})));
+    cells.push_back(csv_number(get({"ledger", "mass", "relative_error"})));
+    cells.push_back(csv_number(get({"particles", "count"})));
+    for (const std::string& b : bodies) {
+      const Json body = get({"bodies", b.c_str()});
+      const Json velocity = body.is_object() && body.contains("velocity") ? body["velocity"] : Json::array({nullptr, nullptr});
+      cells.push_back(csv_number(velocity[0]));
+      cells.push_back(csv_number(velocity[1]));
+      cells.push_back(csv_number(body.is_object() && body.contains("mass") ? body["mass"] : Json()));
+      cells.push_back(csv_number(body.is_object() && body.contains("zones") ? body["zones"] : Json()));
+    }
+    cells.push_back(csv_number(get({"message"})));
+    add_row(cells);
+  }
+  write_text_atomically(directory / "sweep.csv", table);
+}
+
+}  // namespace krug::io

@@ -1,0 +1,189 @@
+// The krug executable as a user meets it: usage errors, `krug validate` on good and broken files,
+// a run with its files (pictures with Cairo, plots with Python, or a note saying why not),
+// Ctrl-C (SIGINT) and SIGTERM writing a checkpoint, and `krug run --restart`.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <thread>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using krug::test::Json;
+using krug::test::run_krug;
+
+namespace {
+
+fs::path example(const std::string& name) { return fs::path(KRUG_EXAMPLES_DIR) / "verification" / name; }
+
+// PNG: signature, then the IHDR chunk with big-endian width and height.
+std::pair<int, int> png_size(const fs::path& file) {
+  const std::string bytes = krug::test::read_text(file);
+  REQUIRE(bytes.size() > 24);
+  REQUIRE(bytes.substr(1, 3) == "PNG");
+  auto be32 = [&](std::size_t at) {
+    int v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+// Lines of a file.
+std::size_t lines_of(const fs::path& file) {
+  if (!fs::exists(file)) return 0;
+  const std::string text = krug::test::read_text(file);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("usage errors exit with code 2 and say what is wrong", "[app][cli]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_usage");
+  CHECK(run_krug({"--help"}, dir / "help.log").exit_code == 0);
+  CHECK(run_krug({"--version"}, dir / "version.log").output.find("krug 0.") != std::string::npos);
+  CHECK(run_krug({}, dir / "none.log").exit_code == 2);
+  const auto unknown = run_krug({"frobnicate"}, dir / "unknown.log");
+  CHECK(unknown.exit_code == 2);
+  CHECK_THAT(unknown.output, Catch::Contains("unknown command \"frobnicate\""));
+  CHECK(run_krug({"run", example("sod.json").string(), "--bogus"}, dir / "option.log").exit_code == 2);
+  CHECK(run_krug({"run", "--restart"}, dir / "restart.log").exit_code == 2);
+  CHECK(run_krug({"run", "--restart", (dir / "missing.bin").string()}, dir / "restart2.log").exit_code == 2);
+  CHECK(run_krug({"sweep", example("sod.json").string()}, dir / "sweep.log").exit_code == 2);
+  CHECK(run_krug({"validate", (dir / "missing.json").string()}, dir / "missing.log").exit_code == 2);
+}
+
+TEST_CASE("krug validate accepts every example and refuses broken files with the JSON path", "[app][cli]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_validate");
+  for (const auto& file : krug::test::scenario_files()) {
+    INFO(file.string());
+    const auto r = run_krug({"validate", file.string()}, dir / "ok.log");
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.output, Catch::Contains("is valid"));
+  }
+  const Json base = krug::test::read_json(example("slab_impact.json"));
+  struct Broken {
+    std::string what;
+    std::function<void(Json&)> edit;
+    std::string expected;  // in the message
+  };
+  const std::vector<Broken> broken = {
+      {"no end_time", [](Json& d) { d.erase("end_time"); }, "end_time: missing"},
+      {"negative end_time", [](Json& d) { d["end_time"] = -1.0; }, "end_time: expected a number > 0"},
+      {"density as a string", [](Json& d) { d["materials"]["aluminium"]["density"] = "heavy"; },
+       "materials.aluminium.density"},
+      {"unknown model", [](Json& d) { d["materials"]["aluminium"]["eos"]["model"] = "lineer"; }, "did you mean \"linear\""},
+      {"zones zero", [](Json& d) { d["bodies"][0]["mesh"]["x"]["zones"] = 0; }, "bodies[0].mesh.x.zones"},
+      {"unknown body in contact", [](Json& d) { d["contact"]["pairs"][0]["bodies"][1] = "targat"; }, "did you mean \"target\""},
+      {"stop rule for an unknown body", [](Json& d) { d["stop"] = {{"body", "flier"}, {"no_contact_time", 1e-7}}; },
+       "did you mean \"flyer\""},
+      {"negative checkpoint interval", [](Json& d) { d["output"]["checkpoint_interval"] = -1.0; },
+       "output.checkpoint_interval"},
+      {"unknown picture field", [](Json& d) { d["output"]["pictures"] = {{"field", "densty"}}; }, "did you mean \"density\""},
+  };
+  for (const Broken& b : broken) {
+    INFO(b.what);
+    Json document = base;
+    b.edit(document);
+    krug::test::write_text(dir / "broken.json", document.dump(2));
+    const auto r = run_krug({"validate", (dir / "broken.json").string()}, dir / "broken.log");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains(b.expected));
+  }
+  // Truncated files at several lengths.
+  const std::string text = base.dump(2);
+  for (std::size_t cut : {std::size_t{0}, std::size_t{1}, text.size() / 3, text.size() / 2, text.size() - 2}) {
+    INFO("truncated at " << cut);
+    krug::test::write_text(dir / "truncated.json", text.substr(0, cut));
+    const auto r = run_krug({"validate", (dir / "truncated.json").string()}, dir / "truncated.log");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("not valid JSON"));
+  }
+}
+
+TEST_CASE("krug run writes its files, pictures and plots, and a missing Python does not fail it", "[app][cli]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_run");
+  Json document = krug::test::read_json(fs::path(KRUG_APP_TEST_DATA_DIR) / "fracture_plate.json");
+  document["output"]["plots"] = true;
+  document["output"]["pictures"] = {{"field", "equivalent_plastic_strain"}, {"every_snapshot", true}, {"width", 640}};
+  krug::test::write_text(dir / "scenario.json", document.dump(2));
+  const auto r = run_krug({"run", (dir / "scenario.json").string(), "--out", (dir / "out").string()}, dir / "run.log");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  for (const char* file : {"summary.json", "history.csv", "final.vtu", "final_particles.vtp", "run.pvd",
+                           "scenario.resolved.json"}) {
+    CHECK(fs::exists(dir / "out" / file));
+  }
+  const std::size_t snapshots = static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(dir / "out" / "snapshots"), fs::directory_iterator()));
+  if (KRUG_APP_HAS_CAIRO) {
+    // every_snapshot: one picture per mesh snapshot (snapshots/ also holds the particle files).
+    std::size_t pictures = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "out" / "pictures")) {
+      if (entry.path().filename().string().rfind("state_", 0) == 0) ++pictures;
+    }
+    CHECK(pictures == snapshots / 2);
+    CHECK(png_size(dir / "out" / "pictures" / "final.png").first == 640);
+    CHECK(png_size(dir / "out" / "pictures" / "state_00000.png").second > 100);
+  } else {
+    CHECK_THAT(r.output, Catch::Contains("no pictures"));
+  }
+  // Plots when /usr/bin/python3 has matplotlib, else a note; never a failure.
+  CHECK((fs::exists(dir / "out" / "plots" / "energy.png") || r.output.find("no plots") != std::string::npos));
+
+  const auto without = run_krug({"run", (dir / "scenario.json").string(), "--out", (dir / "nopython").string()},
+                                dir / "nopython.log", {"KRUG_PYTHON=/nonexistent/python3"});
+  CHECK(without.exit_code == 0);
+  CHECK_THAT(without.output, Catch::Contains("no plots"));
+  CHECK(krug::test::read_json(dir / "nopython" / "summary.json")["status"] == "completed");
+}
+
+TEST_CASE("Ctrl-C writes a checkpoint and exits 130, and krug run --restart finishes the run", "[app][cli][restart]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_interrupt");
+  // E6 with a far end time: it cannot finish before the signal.
+  Json document = krug::test::read_json(example("taylor_bar.json"));
+  document["end_time"] = 1.0;
+  document["output"] = {{"history_interval", 1e-7}, {"snapshot_interval", 1e-5}, {"plots", false},
+                        {"pictures", {{"enabled", false}}}};
+  krug::test::write_text(dir / "scenario.json", document.dump(2));
+  for (const int signal_sent : {SIGINT, SIGTERM}) {
+    INFO("signal " << signal_sent);
+    const fs::path out = dir / (signal_sent == SIGINT ? "int" : "term");
+    const pid_t pid = krug::test::start_krug({"run", (dir / "scenario.json").string(), "--out", out.string()},
+                                             out.string() + ".log");
+    // Wait until the run is well under way (history rows every 0.1 us).
+    for (int i = 0; i < 600 && lines_of(out / "history.csv") < 30; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    kill(pid, signal_sent);
+    CHECK(krug::test::wait_exit_code(pid) == 128 + signal_sent);
+    INFO(krug::test::read_text(out.string() + ".log"));
+    REQUIRE(fs::exists(out / "checkpoint.bin"));
+    const Json summary = krug::test::read_json(out / "summary.json");
+    CHECK(summary["status"] == "failed");
+    CHECK(summary["message"] == "interrupted");
+    CHECK(summary["stopped_by"] == "interrupted");
+    CHECK_THAT(krug::test::read_text(out.string() + ".log"), Catch::Contains("krug run --restart"));
+    // Continue to a nearer end: edit the stored scenario, as a user extending or shortening a run would.
+    const double stopped_at = summary["time"].get<double>();
+    Json resolved = krug::test::read_json(out / "scenario.resolved.json");
+    resolved["end_time"] = stopped_at + 2e-6;
+    krug::test::write_text(out / "scenario.resolved.json", resolved.dump(2));
+    const auto restarted = run_krug({"run", "--restart", (out / "checkpoint.bin").string()}, out.string() + "-restart.log");
+    INFO(restarted.output);
+    CHECK(restarted.exit_code == 0);
+    CHECK_THAT(restarted.output, Catch::Contains("warning: the scenario differs"));
+    const Json after = krug::test::read_json(out / "summary.json");
+    CHECK(after["status"] == "completed");
+    CHECK(after["time"].get<double>() == Approx(stopped_at + 2e-6).epsilon(1e-12));
+    CHECK(after["cycles"].get<long>() > summary["cycles"].get<long>());
+  }
+}

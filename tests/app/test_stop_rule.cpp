@@ -1,0 +1,121 @@
+// The stop rule (scenario key "stop", include/krug/io/stop_rule.hpp): first on velocity histories
+// made up here, then on E1 (examples/verification/slab_impact.json), where the exact answer is
+// known: the 5 mm flyer at 10 m/s hits a 10 mm target of the same material, and the two separate at
+// 2 h_f / c_L = 1.550 us with the flyer at rest (equal impedances). With no_contact_time 0.5 us the
+// run must end at about 1.55 + 0.5 us, long before its end time of 4 us.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cmath>
+
+#include "krug/io/run.hpp"
+#include "krug/io/stop_rule.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using krug::Vec2;
+using krug::io::StopMonitor;
+using krug::io::StopRule;
+using krug::test::Json;
+
+namespace {
+
+StopRule rule(double window, double fraction) {
+  StopRule r;
+  r.body = "projectile";
+  r.no_contact_time = window;
+  r.velocity_change = fraction;
+  return r;
+}
+
+// Feeds v(t) at steps of dt until the monitor says stop; returns that time (or -1).
+template <class Velocity>
+double stop_time(StopMonitor& monitor, Velocity v, double dt, double end) {
+  for (double t = 0.0; t <= end; t += dt) {
+    if (monitor.observe(t, v(t))) return t;
+  }
+  return -1.0;
+}
+
+}  // namespace
+
+TEST_CASE("the stop rule on made-up velocity histories", "[app][stop]") {
+  SECTION("a body in free flight never arms, so the run is not cut short before the impact") {
+    StopMonitor monitor(rule(1.0, 0.01));
+    CHECK(stop_time(monitor, [](double) { return Vec2{300.0, 0.0}; }, 0.01, 10.0) < 0.0);
+    CHECK_FALSE(monitor.state().armed);
+  }
+  SECTION("after a hit (300 -> 200 m/s over [2, 3]) it stops one window after the velocity settles") {
+    StopMonitor monitor(rule(1.0, 0.01));
+    auto v = [](double t) { return Vec2{t < 2.0 ? 300.0 : t < 3.0 ? 300.0 - 100.0 * (t - 2.0) : 200.0, 0.0}; };
+    const double t = stop_time(monitor, v, 0.01, 10.0);
+    // Armed when |dV| first exceeds 3 m/s (t = 2.03..2.04); the window of 1 must hold within 3 m/s of
+    // the current 200 m/s: 300 - 100 (t' - 2) <= 203 for every t' in [t - 1, t], so t - 1 >= 2.97.
+    CHECK(t == Approx(3.97).margin(0.011));
+  }
+  SECTION("small ringing below the tolerance does not prevent the stop; a second hit delays it") {
+    StopMonitor monitor(rule(0.5, 0.02));
+    auto v = [](double t) {
+      const double base = t < 1.0 ? 100.0 : t < 1.3 ? 50.0 : 20.0;  // hits at t = 1 and t = 1.3
+      return Vec2{base + 0.5 * std::sin(40.0 * t), 0.0};           // ringing of +-0.5 m/s < 2 m/s
+    };
+    const double t = stop_time(monitor, v, 0.001, 10.0);
+    CHECK(t == Approx(1.8).margin(0.002));  // one window after the second hit
+  }
+  SECTION("the second component counts too") {
+    StopMonitor monitor(rule(1.0, 0.01));
+    auto v = [](double t) { return Vec2{100.0, t < 1.0 ? 0.0 : t < 2.0 ? 10.0 * (t - 1.0) : 10.0}; };
+    CHECK(stop_time(monitor, v, 0.01, 10.0) == Approx(2.9).margin(0.011));
+  }
+  SECTION("a body that starts at rest uses the largest speed it reaches as its scale") {
+    StopMonitor monitor(rule(1.0, 0.01));
+    auto v = [](double t) { return Vec2{t < 1.0 ? 0.0 : t < 2.0 ? 50.0 * (t - 1.0) : 50.0, 0.0}; };
+    CHECK(stop_time(monitor, v, 0.01, 10.0) == Approx(2.99).margin(0.011));
+  }
+}
+
+TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", "[app][stop]") {
+  Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
+  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_stop.json");
+  const fs::path dir = krug::test::scratch("stop_rule_e1");
+  krug::io::RunOptions options;
+  options.output_directory = dir;
+  const auto result = krug::io::run_scenario(scenario, options);
+  CHECK(result.status == krug::io::RunStatus::completed);
+  CHECK(result.stopped_by == "stop rule");
+  const Json summary = krug::test::read_json(dir / "summary.json");
+  CHECK(summary["status"] == "completed");
+  CHECK(summary["stopped_by"] == "stop rule");
+  // Separation at 1.550 us (exact), then a window of 0.5 us; the discrete separation is a few cycles
+  // (of about 2 ns) late and the flyer's velocity settles within 1 % a little after it.
+  CHECK(summary["time"].get<double>() > 2.0e-6);
+  CHECK(summary["time"].get<double>() < 2.3e-6);
+  CHECK(std::abs(summary["bodies"]["flyer"]["velocity"][0].get<double>()) < 0.1);  // 1 % of 10 m/s
+
+  SECTION("restarted inside the window, it stops at the same cycle") {
+    const fs::path stopped = krug::test::scratch("stop_rule_e1_restart");
+    std::atomic<bool> interrupt{false};
+    krug::io::RunOptions first;
+    first.output_directory = stopped;
+    first.interrupt = &interrupt;
+    first.on_cycle = [&](const krug::Simulation& s, double) {
+      if (s.time() >= 1.8e-6) interrupt = true;
+      return true;
+    };
+    REQUIRE(krug::io::run_scenario(scenario, first).message == "interrupted");
+    krug::io::RunOptions second;
+    second.output_directory = stopped;
+    CHECK(krug::io::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
+    CHECK(krug::test::summary_without_timing(stopped / "summary.json") == krug::test::summary_without_timing(dir / "summary.json"));
+  }
+}
+
+TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {
+  const auto scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  const fs::path dir = krug::test::scratch("stop_rule_none");
+  krug::io::RunOptions options;
+  options.output_directory = dir;
+  CHECK(krug::io::run_scenario(scenario, options).stopped_by == "end_time");
+  CHECK(krug::test::read_json(dir / "summary.json")["stopped_by"] == "end_time");
+}

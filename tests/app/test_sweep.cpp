@@ -1,0 +1,153 @@
+// Parameter sweeps: the --set syntax and the variants (library API, krug::io), then `krug sweep` on
+// E1 (examples/verification/slab_impact.json, 60 zones) as 2 x 2 variants in 2 processes. E1 has an
+// exact answer for each variant: equal impedances, so the 5 mm flyer stops and the 10 mm target
+// leaves with half the flyer's speed (momentum m_f v = m_t v_t with m_t = 2 m_f), whatever the
+// density.
+#include <catch2/catch.hpp>
+
+#include <map>
+
+#include "krug/core/error.hpp"
+#include "krug/io/sweep.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using krug::io::parse_sweep_set;
+
+namespace {
+
+// sweep.csv as rows of cells (RFC 4180 quoting: "a,b" and "" for a quote).
+std::vector<std::map<std::string, std::string>> read_table(const fs::path& file) {
+  std::stringstream in(krug::test::read_text(file));
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& text) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const char c = text[i];
+      if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        cell += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    cells.push_back(cell);
+    return cells;
+  };
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    REQUIRE(cells.size() == header.size());
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("sweep values (--set) split at top-level commas and keep JSON values whole", "[app][sweep]") {
+  const auto p = parse_sweep_set(R"(materials.steel.eos=1,2.5,[3,4],"a,b",{"k":[1,2]},steel)");
+  CHECK(p.path == "materials.steel.eos");
+  CHECK(p.values == std::vector<std::string>{"1", "2.5", "[3,4]", "\"a,b\"", R"({"k":[1,2]})", "steel"});
+  CHECK(parse_sweep_set("bodies[0].initial.velocity[0]=350").values.size() == 1);
+  for (const char* bad : {"no_equals", "=1,2", "a=", "a=1,,2", "a[x]=1", "a[0=1", "a..b=1"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(parse_sweep_set(bad), krug::InputError);
+  }
+}
+
+TEST_CASE("variants are the cartesian product, checked by the reader before anything runs", "[app][sweep]") {
+  const fs::path scenario = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
+  const fs::path dir = krug::test::scratch("sweep_prepare");
+  const auto variants = krug::io::prepare_sweep(
+      scenario, {parse_sweep_set("bodies[0].initial.velocity[0]=10,20,30"), parse_sweep_set("controls.cfl=0.3,0.5")}, dir);
+  REQUIRE(variants.size() == 6);
+  CHECK(variants[0].name == "000_velocity0=10_cfl=0.3");
+  CHECK(variants[1].name == "001_velocity0=10_cfl=0.5");  // the last parameter varies fastest
+  CHECK(variants[5].name == "005_velocity0=30_cfl=0.5");
+  const auto written = krug::test::read_json(variants[3].scenario);
+  CHECK(written["bodies"][0]["initial"]["velocity"][0] == 20);
+  CHECK(written["controls"]["cfl"] == 0.5);  // "controls" was not in the file: created
+  CHECK(written["title"] == krug::test::read_json(scenario)["title"]);
+
+  auto error_of = [&](const std::string& set) {
+    try {
+      (void)krug::io::prepare_sweep(scenario, {parse_sweep_set(set)}, krug::test::scratch("sweep_bad"));
+    } catch (const krug::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK_THAT(error_of("bodies[5].name=a"), Catch::Contains("has 2 items"));
+  CHECK_THAT(error_of("title.x=1"), Catch::Contains("is not an object"));
+  CHECK_THAT(error_of("materials.aluminium.density=1,-1"), Catch::Contains("variant 001_density=-1"));
+  CHECK_THAT(error_of("materials.aluminium.density=-1"), Catch::Contains("materials.aluminium.density"));
+  CHECK_THAT(error_of("bodies[0].materal=aluminium"), Catch::Contains("did you mean \"material\""));
+}
+
+TEST_CASE("krug sweep runs the variants in parallel and tabulates them", "[app][sweep]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("sweep_e1");
+  const auto result = krug::test::run_krug(
+      {"sweep", (fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json").string(), "--set",
+       "bodies[0].initial.velocity[0]=10,20", "--set", "materials.aluminium.density=2785,3000", "--set",
+       "output.pictures.enabled=false", "--set", "output.plots=false", "--jobs", "2", "--out", dir.string()},
+      dir / "sweep.log");
+  INFO(result.output);
+  REQUIRE(result.exit_code == 0);
+  const auto rows = read_table(dir / "sweep.csv");
+  REQUIRE(rows.size() == 4);
+  const std::vector<std::pair<double, double>> expected = {{10, 2785}, {10, 3000}, {20, 2785}, {20, 3000}};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    INFO(row.at("variant"));
+    CHECK(std::stod(row.at("bodies[0].initial.velocity[0]")) == expected[i].first);
+    CHECK(std::stod(row.at("materials.aluminium.density")) == expected[i].second);
+    CHECK(row.at("status") == "completed");
+    CHECK(row.at("stopped_by") == "end_time");
+    CHECK(std::stod(row.at("time")) == Approx(4e-6).epsilon(1e-12));
+    CHECK(std::stoi(row.at("cycles")) > 100);
+    CHECK(std::stod(row.at("mass_error")) < 1e-14);
+    // Exact: target at v/2, flyer at rest; the discrete contact leaves 0.05 % (verification.md E1).
+    const double v = expected[i].first;
+    CHECK(std::stod(row.at("target_vx")) == Approx(v / 2).epsilon(2e-3));
+    CHECK(std::abs(std::stod(row.at("flyer_vx"))) < 1e-3 * v);
+    CHECK(std::stod(row.at("flyer_mass")) == Approx(expected[i].second * 0.005 * 2.5e-4).epsilon(1e-12));
+    CHECK(row.at("target_zones") == "40");
+    CHECK(fs::exists(dir / row.at("variant") / "summary.json"));
+    CHECK(fs::exists(dir / row.at("variant") / "log.txt"));
+  }
+}
+
+TEST_CASE("a sweep with a failing variant exits 1 and says so in the table", "[app][sweep]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("sweep_failing");
+  const auto result = krug::test::run_krug(
+      {"sweep", (fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json").string(), "--set",
+       "controls.max_cycles=5,1000000", "--set", "output={\"plots\": false, \"pictures\": {\"enabled\": false}}",
+       "--jobs", "2", "--out", dir.string(), "--quiet"},
+      dir / "sweep.log");
+  INFO(result.output);
+  CHECK(result.exit_code == 1);
+  const auto rows = read_table(dir / "sweep.csv");
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].at("status") == "failed");
+  CHECK(rows[0].at("stopped_by") == "max_cycles");
+  CHECK(rows[0].at("message") == "reached max_cycles before the end time");
+  CHECK(rows[1].at("status") == "completed");
+  CHECK(rows[1].at("output") == R"({"plots":false,"pictures":{"enabled":false}})");  // as given
+}
