@@ -215,6 +215,7 @@ int main(int argc, char** argv) {
   try {
     if (args.command == "validate") {
       const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
+      krug::io::validate_scenario(scenario);
       std::printf("krug: %s is valid (%zu bodies, %d zones)\n", args.scenario.c_str(), scenario.setup.bodies.size(),
                   scenario.setup.mesh.zones.size());
       return 0;

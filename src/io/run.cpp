@@ -1,6 +1,7 @@
 #include "krug/io/run.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
@@ -96,8 +97,33 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
 
 }  // namespace
 
+void check_cycle_budget(const Simulation& simulation) {
+  const double dt = simulation.stable_time_step();
+  if (!(dt > 0.0) || !std::isfinite(dt)) return;  // no wave speed yet: nothing to estimate from
+  const Controls& controls = simulation.controls();
+  const double cycles = (controls.end_time - simulation.time()) / dt;
+  if (cycles <= static_cast<double>(controls.max_cycles)) return;
+  std::string where;
+  const Index zone = simulation.controlling_zone();
+  for (const Body& body : simulation.bodies()) {
+    if (zone >= body.zone_begin && zone < body.zone_end) {
+      where = fmt::format(" (set by zone {} of body \"{}\")", zone - body.zone_begin, body.name);
+    }
+  }
+  throw InputError(fmt::format(
+      "end_time: {:.4g} s needs at least {:.3g} cycles at the initial stable step {:.3g} s{}, more than "
+      "controls.max_cycles = {}; check the end time's units, or raise controls.max_cycles",
+      controls.end_time, cycles, dt, where, controls.max_cycles));
+}
+
+void validate_scenario(const Scenario& scenario) {
+  const Simulation simulation(scenario.setup);
+  check_cycle_budget(simulation);
+}
+
 RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
   Simulation simulation(scenario.setup);
+  check_cycle_budget(simulation);
   RunRecorder recorder(scenario, simulation,
                        options.output_directory.empty() ? std::filesystem::path(scenario.output.directory)
                                                         : options.output_directory,

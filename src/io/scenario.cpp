@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -15,6 +16,7 @@
 #include "krug/core/error.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
+#include "krug/mesh/quality.hpp"
 
 namespace krug::io {
 
@@ -75,6 +77,24 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
     jc.melt_temperature = strength.number("melt_temperature", 1.0e9, Range::positive());
     jc.specific_heat = strength.number("specific_heat", 1.0e9, Range::positive());
     m.strength = jc;
+  }
+  // Physical sanity: the Poisson ratio implied by the bulk and shear moduli, nu = (3K - 2 mu) / (2 (3K + mu)),
+  // lies in (-1, 1/2) for any positive moduli; a negative one almost always means a unit slip (GPa vs Pa)
+  // in one of them, so it is refused here with both values.
+  const double shear_modulus = m.shear_modulus();
+  const double bulk_modulus = std::visit([](const auto& e) {
+    using E = std::decay_t<decltype(e)>;
+    if constexpr (std::is_same_v<E, LinearBulk>) return e.bulk_modulus;
+    else if constexpr (std::is_same_v<E, MieGruneisen>) return e.reference_density * e.bulk_sound_speed * e.bulk_sound_speed;
+    else return 0.0;
+  }, m.eos);
+  if (shear_modulus > 0.0 && bulk_modulus > 0.0) {
+    const double poisson = (3.0 * bulk_modulus - 2.0 * shear_modulus) / (2.0 * (3.0 * bulk_modulus + shear_modulus));
+    if (poisson < 0.0) {
+      strength.fail("shear_modulus", fmt::format("a shear modulus giving, with the bulk modulus {:.4g} Pa of the eos, a "
+                                                 "Poisson ratio in [0, 0.5); this one gives {:.3f} (a unit slip?)",
+                                                 bulk_modulus, poisson));
+    }
   }
   strength.finish();
   if (auto f = spec.optional_object("fracture")) {
@@ -182,6 +202,14 @@ MeshedBody read_mesh(JsonObject spec, Mesh& mesh, Index body, GeometryKind geome
     p.nose_zones = static_cast<int>(spec.integer("nose_zones", 0, 0, 100000));
     p.shank_zones = static_cast<int>(spec.integer("shank_zones", 0, 0, 1000000));
     p.shank_ratio = spec.number("shank_ratio", 1.0, Range{0.0, 100.0, true});
+    {
+      // An upper bound of the generator's zone count: every column of the O-grid and shank.
+      const long across = static_cast<long>(p.radial_zones) + p.core_zones + p.nose_zones;
+      const long zones = across * (across + p.shank_zones);
+      if (zones > max_zones) {
+        spec.fail_here(fmt::format("up to {} zones is more than the {} this machine can hold", zones, max_zones));
+      }
+    }
     try {
       result.patch = generate::nosed_cylinder(mesh, p, body);
     } catch (const InputError& e) {
@@ -642,6 +670,22 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
     resolved_bodies.push_back(resolved_body);
   }
   top.resolve("bodies", resolved_bodies);
+  // Bodies may touch but not overlap: a node of one inside a zone of another is an input error.
+  build_edge_continuations(setup.mesh);
+  for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+    for (std::size_t j = 0; j < setup.bodies.size(); ++j) {
+      if (i == j) continue;
+      const Body& a = setup.bodies[i];
+      const Body& b = setup.bodies[j];
+      if (const auto overlap = find_node_inside_zones(setup.mesh, a.node_begin, a.node_end, b.zone_begin, b.zone_end)) {
+        const Vec2 p = setup.mesh.nodes.position(overlap->node);
+        throw InputError(fmt::format(
+            "bodies[{}] (\"{}\") overlaps bodies[{}] (\"{}\"): its node at ({:.6g}, {:.6g}) lies {:.3g} m inside "
+            "zone {} of \"{}\"; bodies may touch but not overlap (check the meshes' positions)",
+            i, a.name, j, b.name, p.x, p.y, overlap->depth, overlap->zone - b.zone_begin, b.name));
+      }
+    }
+  }
   for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
   std::vector<bool> fracturing;
   for (const Body& body : setup.bodies) fracturing.push_back(setup.fracture[static_cast<std::size_t>(body.material)].any());

@@ -170,6 +170,7 @@ void Simulation::initialise() {
     const double dt = controls_.cfl * quad::smallest_altitude(mesh_.corner_positions(z), zones.area[z]) / speed;
     if (dt < stable) { stable = dt; controlling_zone_ = z; }
   }
+  stable_time_step_ = stable;
   double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable;
   if (!std::isfinite(first)) first = 1e-6 * controls_.end_time;
   first = std::min({first, stable, controls_.max_time_step, controls_.end_time});

@@ -138,7 +138,7 @@ TEST_CASE("a sweep with a failing variant exits 1 and says so in the table", "[a
   const fs::path dir = krug::test::scratch("sweep_failing");
   const auto result = krug::test::run_krug(
       {"sweep", (fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json").string(), "--set",
-       "controls.max_cycles=5,1000000", "--set", "output={\"plots\": false, \"pictures\": {\"enabled\": false}}",
+       "controls.time_step_floor=1e-6,0", "--set", "output={\"plots\": false, \"pictures\": {\"enabled\": false}}",
        "--jobs", "2", "--out", dir.string(), "--quiet"},
       dir / "sweep.log");
   INFO(result.output);
@@ -146,8 +146,9 @@ TEST_CASE("a sweep with a failing variant exits 1 and says so in the table", "[a
   const auto rows = read_table(dir / "sweep.csv");
   REQUIRE(rows.size() == 2);
   CHECK(rows[0].at("status") == "failed");
-  CHECK(rows[0].at("stopped_by") == "max_cycles");
-  CHECK(rows[0].at("message") == "reached max_cycles before the end time");
+  // A floor above the stable step (1.9e-8 s) stops the run at its first cycle with a diagnostic.
+  CHECK(rows[0].at("stopped_by") == "failure");
+  CHECK_THAT(rows[0].at("message"), Catch::Contains("floor"));
   CHECK(rows[1].at("status") == "completed");
   CHECK(rows[1].at("output") == R"({"plots":false,"pictures":{"enabled":false}})");  // as given
 }

@@ -5,7 +5,10 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 #include "krug/core/error.hpp"
+#include "krug/io/run.hpp"
 #include "krug/io/scenario.hpp"
 
 using krug::InputError;
@@ -108,4 +111,73 @@ TEST_CASE("scenario errors name the JSON path and what was expected", "[scenario
     const auto e = error_of(replaced(base, "\"type\": \"rectangle\",", "\"type\": \"rectangle\", \"map\": [\"x + 0.1*y*y\", \"y\"],"));
     CHECK(e.find("not a straight line along an axis") != std::string::npos);
   }
+}
+
+// Physical sanity (issue: "non-positive density or moduli, Poisson ratio out of range, overlapping
+// bodies, meshes too large for memory, an end time that would need more than a stated cycle budget").
+namespace {
+
+std::string two_blocks(double second_from) {
+  return fmt::format(R"({{
+    "geometry": "planar",
+    "end_time": 1e-6,
+    "materials": {{ "al": {{ "density": 2700, "eos": {{ "model": "linear", "bulk_modulus": 7.3e10 }},
+                             "strength": {{ "model": "elastic", "shear_modulus": 2.6e10 }} }} }},
+    "bodies": [ {{ "name": "left", "material": "al",
+                   "mesh": {{ "type": "rectangle", "x": {{ "from": 0, "to": 0.01, "zones": 4 }},
+                                                  "y": {{ "from": 0, "to": 0.01, "zones": 4 }} }} }},
+                {{ "name": "right", "material": "al",
+                   "mesh": {{ "type": "rectangle", "x": {{ "from": {}, "to": 0.02, "zones": 4 }},
+                                                  "y": {{ "from": 0, "to": 0.01, "zones": 4 }} }} }} ]
+  }})", second_from);
+}
+
+}  // namespace
+
+TEST_CASE("physically impossible scenarios are refused with the values that make them so", "[scenario]") {
+  SECTION("bodies that touch are accepted, bodies that overlap are not") {
+    CHECK(error_of(two_blocks(0.01)) == "(no error)");
+    // The right block starts 1 mm inside the left one (zones 2.5 mm): its nodes at x = 0.009 lie
+    // 1 mm deep in the left block's last column of zones.
+    const std::string e = error_of(two_blocks(0.009));
+    CHECK_THAT(e, Catch::Contains("bodies[0] (\"left\") overlaps bodies[1] (\"right\")"));
+    CHECK_THAT(e, Catch::Contains("0.001 m inside"));
+  }
+  SECTION("a shear modulus in the wrong units gives a negative Poisson ratio") {
+    // K = 73 GPa with mu = 260 GPa (a slipped exponent): nu = (219 - 520) / (2 (219 + 260)) = -0.314.
+    const std::string e = error_of(replaced(two_blocks(0.01), "2.6e10", "2.6e11"));
+    CHECK_THAT(e, Catch::Contains("materials.al.strength.shear_modulus"));
+    CHECK_THAT(e, Catch::Contains("-0.314"));
+  }
+  SECTION("non-positive density or modulus") {
+    CHECK_THAT(error_of(replaced(two_blocks(0.01), "\"density\": 2700", "\"density\": 0")),
+               Catch::Contains("materials.al.density"));
+    CHECK_THAT(error_of(replaced(two_blocks(0.01), "7.3e10", "-7.3e10")),
+               Catch::Contains("materials.al.eos.bulk_modulus"));
+  }
+  SECTION("a mesh too large for the machine is refused before it is built") {
+    const std::string e = error_of(replaced(two_blocks(0.01), "\"zones\": 4 },\n                                                  \"y\": { \"from\": 0, \"to\": 0.01, \"zones\": 4 } } },\n                { \"name\": \"right\"",
+                                            "\"zones\": 100000 },\n                                                  \"y\": { \"from\": 0, \"to\": 0.01, \"zones\": 100000 } } },\n                { \"name\": \"right\""));
+    CHECK_THAT(e, Catch::Contains("bodies[0].mesh"));
+    CHECK_THAT(e, Catch::Contains("more than"));
+  }
+}
+
+TEST_CASE("an end time beyond the cycle budget is refused before the run", "[scenario]") {
+  // Two 2.5 mm aluminium zones: c = sqrt((K + 4/3 mu) / rho) = 6.2 km/s, stable step about
+  // 0.5 x 2.5e-3 / 6.2e3 = 2e-7 s. An end time of 1 s (a slip from 1e-6 s) needs about 5e6 cycles.
+  std::string text = replaced(two_blocks(0.01), "\"end_time\": 1e-6", "\"end_time\": 1");
+  text = replaced(text, "\"bodies\"", "\"controls\": { \"max_cycles\": 1000000 }, \"bodies\"");
+  const auto scenario = parse_scenario(text, "test.json");
+  std::string e = "(no error)";
+  try {
+    krug::io::validate_scenario(scenario);
+  } catch (const InputError& error) {
+    e = error.what();
+  }
+  CHECK_THAT(e, Catch::Contains("end_time"));
+  CHECK_THAT(e, Catch::Contains("controls.max_cycles = 1000000"));
+  CHECK_THAT(e, Catch::Contains("(set by zone "));
+  // Within budget: accepted.
+  CHECK_NOTHROW(krug::io::validate_scenario(parse_scenario(two_blocks(0.01), "test.json")));
 }

@@ -22,6 +22,13 @@ struct RunOptions {
   PictureHook picture;
 };
 
+// Checks what only the built initial state can tell: the end time must be reachable within
+// controls.max_cycles at the initial CFL-stable step (a lower bound of the cycles a run needs).
+// Throws InputError naming the controlling body and zone. run_scenario calls it; so does
+// `krug validate`, through validate_scenario (which builds the state and discards it).
+void check_cycle_budget(const Simulation& simulation);
+void validate_scenario(const Scenario& scenario);
+
 // Runs to the end time, to the stop rule or to a numerical failure; never throws NumericalFailure
 // (it is reported in the result and in summary.json). InputError from the setup propagates.
 RunResult run_scenario(const Scenario& scenario, const RunOptions& options);

@@ -13,6 +13,7 @@
 // and grows without bound for a sliver of either kind (thin rectangle or flat parallelogram);
 // +infinity for a zone of non-positive area.
 #include <limits>
+#include <optional>
 
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/quad.hpp"
@@ -38,5 +39,21 @@ struct ZoneQuality {
 
 // Quality of the active zones in [zone_begin, zone_end), from the current node positions.
 ZoneQuality zone_quality(const Mesh& mesh, Index zone_begin, Index zone_end);
+
+// Overlap of two bodies at set-up: a node of [node_begin, node_end) that lies inside a zone of
+// [zone_begin, zone_end) deeper than `depth_fraction` x that zone's smallest altitude behind the
+// zone's boundary edges (a node on an interior edge is inside both zones), with the depth the
+// distance to the nearest boundary edge (at least the smallest altitude for an interior zone).
+// Bodies that touch (shared or coincident boundaries) do not overlap. Needs zones.neighbour
+// (build_edge_continuations).
+// Found through a uniform bucket grid of the nodes: linear in the sizes of both ranges. The test is
+// exact for convex zones; a non-convex zone is tested as the intersection of its edges' half-planes.
+struct NodeInZone {
+  Index node = -1;
+  Index zone = -1;
+  double depth = 0.0;  // distance from the node to the zone's nearest edge (m)
+};
+std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_begin, Index node_end, Index zone_begin,
+                                                 Index zone_end, double depth_fraction = 1e-3);
 
 }  // namespace krug

@@ -113,6 +113,8 @@ class Simulation {
   double next_time_step() const { return time_step_next_; }
   double last_time_step() const { return time_step_previous_; }
   Index controlling_zone() const { return controlling_zone_; }
+  // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
+  double stable_time_step() const { return stable_time_step_; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
   double deepest_contact_gap() const { return deepest_contact_gap_; }
