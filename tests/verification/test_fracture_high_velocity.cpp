@@ -42,10 +42,15 @@ TEST_CASE("E8 hardened-steel striker at 1.5 km/s through a 6061-T6 plate runs to
   const double momentum_error =
       std::abs(ledger.axial_momentum - ledger.initial_axial_momentum - ledger.axial_boundary_impulse) / momentum_scale;
   const double particle_mass = counts.converted_mass * sim.whole_body_factor();
-  // The hole: the smallest radius of a plate zone centre left.
+  // The hole: the smallest radius of a plate zone centre left in the plate, z > -5 mm (the plate is
+  // 3 mm thick and dishes by less than 2 mm). Zones torn out with the plug fly ahead of the striker,
+  // 17 mm below the plate at 12 us, and are not the plate's (one axis zone, 0.13 mg, did so once the
+  // particle-corner start gap was fixed).
   double hole_radius = 1e300;
   for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
-    if (sim.mesh().zones.active[z]) hole_radius = std::min(hole_radius, quad::centre(sim.mesh().corner_positions(z)).y);
+    if (!sim.mesh().zones.active[z]) continue;
+    const Vec2 centre = quad::centre(sim.mesh().corner_positions(z));
+    if (centre.x > -0.005) hole_radius = std::min(hole_radius, centre.y);
   }
   INFO("cycles " << sim.cycle() << " (" << sim.zone_cycles() << " zone-cycles, " << run.seconds << " s); striker "
                  << s.velocity.x << " m/s, rear of the striker at z = " << s.bbox_max.x << " m; plate: damaged "

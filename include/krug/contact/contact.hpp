@@ -34,7 +34,7 @@ enum class ReactionMethod {
 struct ContactControls {
   ReactionMethod method = ReactionMethod::gauss_seidel;
   int max_sweeps = 50;
-  double gap_tolerance = 1e-6;  // sweeps stop when no gap is below -tolerance x segment length
+  double gap_tolerance = 1e-5;  // sweeps stop when no gap is below -tolerance x segment length
   double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step,
   double overlap_speed = 1.0;     // and no faster than this (m/s): a fraction per step alone is a speed
                                   // fraction x depth / dt, which grows without bound as dt shrinks
@@ -92,7 +92,9 @@ class ContactSolver {
     Kind kind = Kind::node_segment;
     double friction = 0.0;
     double weight = 1.0;   // 1/2 for two-way pairs in the summation method
-    double start_gap = 0.0;
+    double start_gap = 0.0;     // gap at x^n, <= 0 (pre-existing overlap); particle-segment: from the face's line
+    double start_gap_a = 0.0;   // particle-segment: from the end points a and b (the feature is chosen
+    double start_gap_b = 0.0;   // in contact_geometry, from the predicted positions)
     double length = 0.0;   // segment length (m), for tolerances
     double normal = 0.0;   // accumulated normal reaction (N per radian or per m)
     double tangent = 0.0;  // accumulated tangential reaction
@@ -101,6 +103,8 @@ class ContactSolver {
   struct Geometry {
     Vec2 normal, tangent;
     double xi = 0.0, gap = 0.0;
+    double start_gap = 0.0;  // the candidate's start gap on the same feature as `gap` (<= 0)
+    SegmentFeature feature = SegmentFeature::face;  // particle-segment: what `gap` is measured from
     bool valid = true;
   };
   void find_candidates(double dt_next);
@@ -110,7 +114,7 @@ class ContactSolver {
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
   // Returns the gap after this update (for the convergence check).
   double update(Candidate& c, double dt_mid, double dt_next);
-  double overlap_target(const Candidate& c, double dt_next) const;
+  double overlap_target(double start_gap, double dt_next) const;
   void apply(Index point, Vec2 direction, double force, double dt_mid);
   Vec2 position(Index point) const;
   Vec2 velocity(Index point) const;
@@ -127,6 +131,7 @@ class ContactSolver {
   std::vector<std::pair<Index, Index>> zone_ranges_;
   std::vector<BodyBoundary> boundaries_;
   std::vector<Candidate> candidates_;
+  std::vector<Index> working_;  // candidates the later Gauss-Seidel sweeps visit
   std::vector<Box> boxes_;
   UniformGrid grid_;
   std::vector<double> reaction_x_, reaction_y_;

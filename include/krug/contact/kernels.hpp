@@ -13,6 +13,7 @@
 // The same kernel with a or b absent is a point against a rigid wall.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "krug/core/vec2.hpp"
 
@@ -47,6 +48,55 @@ inline SegmentProjection project(Vec2 c, Vec2 a, Vec2 b, double radius) {
   p.xi = std::clamp(along, 0.0, 1.0);
   p.gap = dot(c - a, p.normal) - radius;
   return p;
+}
+
+// The feature of a segment a disc is measured against: the face while its centre projects within the
+// segment (the signed distance from the face's line), else the nearer end point (a corner to roll
+// over: the distance from it). The start gap of a contact is taken on the same feature as its
+// predicted gap (DESIGN.md section 2 step 3).
+enum class SegmentFeature : std::uint8_t { face, end_a, end_b };
+
+inline SegmentFeature closest_feature(const SegmentProjection& p) {
+  if (p.inside) return SegmentFeature::face;
+  return p.xi <= 0.0 ? SegmentFeature::end_a : SegmentFeature::end_b;
+}
+
+// A disc (a particle) against a segment or another disc: where the reaction acts and how far apart they are.
+struct DiscContact {
+  SegmentFeature feature = SegmentFeature::face;
+  double xi = 0.0;   // contact point along the segment (0 against a disc: the whole reaction on it)
+  double gap = 0.0;  // signed gap (m), negative where they overlap
+  Vec2 normal;       // unit normal, from the segment (or the other disc) towards the disc's centre
+};
+
+// The disc (centre c, radius) against the segment ab: over the face, the signed distance from its line
+// along its outward normal (negative once the centre is behind it); beside the face, the distance from
+// the nearer end point, a convex corner to roll over.
+inline DiscContact disc_segment_contact(Vec2 c, Vec2 a, Vec2 b, double radius) {
+  const SegmentProjection p = project(c, a, b, 0.0);
+  DiscContact k;
+  k.xi = p.xi;
+  k.feature = closest_feature(p);
+  if (k.feature == SegmentFeature::face) {
+    k.normal = p.normal;
+    k.gap = p.gap - radius;
+  } else {
+    const Vec2 offset = c - (a + p.xi * (b - a));
+    const double distance = norm(offset);
+    k.normal = distance > 0.0 ? (1.0 / distance) * offset : p.normal;
+    k.gap = distance - radius;
+  }
+  return k;
+}
+
+// The disc (centre c, radius) against another disc (centre other, radius other_radius).
+inline DiscContact disc_disc_contact(Vec2 c, double radius, Vec2 other, double other_radius) {
+  const Vec2 offset = c - other;
+  const double distance = norm(offset);
+  DiscContact k;
+  k.normal = distance > 0.0 ? (1.0 / distance) * offset : Vec2{1.0, 0.0};
+  k.gap = distance - radius - other_radius;
+  return k;
 }
 
 // The effective inverse mass w of the contact along a direction (normal or tangent).
