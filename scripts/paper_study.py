@@ -1,0 +1,166 @@
+#!/usr/bin/python3
+"""The validation study of the paper's case (docs/validation.md), generated, run and tabulated.
+
+    scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 5]
+                                  [--groups mesh,default,fig6,velocity,sensitivity]
+
+Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run with a
+summary.json already there is not repeated, so the study resumes where it stopped). Per group,
+OUTDIR/GROUP.csv holds the report rows (scripts/paper_case.py report); OUTDIR/fig6.png plots the
+Fig. 6 group. Groups:
+  mesh         2.6 g bullet, the three 3 mm targets at 5, 7 and 10 zones per mm
+  default      11 g bullet, the three 3 mm targets at 10 zones per mm (examples/paper/)
+  fig6         dU/U0 against H = 1..5 mm, three kinds, 2.6 g and 11 g (n 1-mm plates in contact, one
+               n-mm plate, n spaced 1-mm plates); at H = 1 the three kinds are the same target
+  velocity     the three 3 mm targets at 350, 370 and 390 m/s, 2.6 g
+  sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target
+               for the gap
+The study resolution (--zones-per-mm, default 5) applies to all but the mesh group.
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PAPER_CASE = os.path.join(HERE, "paper_case.py")
+
+
+def cases(groups, zones):
+    """(group, name, paper_case.py generate options) for every run of the chosen groups."""
+    out = []
+    if "default" in groups:
+        for kind in ("monolithic", "layered", "spaced"):
+            out.append(("default", f"default_{kind}_11g", ["--mass", "11", "--kind", kind]))
+    if "mesh" in groups:
+        for z in (5, 7, 10):
+            for kind in ("monolithic", "layered", "spaced"):
+                out.append(("mesh", f"mesh_{kind}_2.6g_z{z}", ["--mass", "2.6", "--kind", kind, "--zones-per-mm", str(z)]))
+    if "fig6" in groups:
+        for mass in ("2.6", "11"):
+            for h in (1, 2, 3, 4, 5):
+                for kind in ("monolithic", "layered", "spaced"):
+                    out.append(("fig6", f"fig6_{kind}_H{h}_{mass}g",
+                                ["--mass", mass, "--kind", kind, "--thickness", str(h), "--zones-per-mm", str(zones)]))
+    if "velocity" in groups:
+        for v in (350, 370, 390):
+            for kind in ("monolithic", "layered", "spaced"):
+                out.append(("velocity", f"velocity_{kind}_{v}",
+                            ["--mass", "2.6", "--kind", kind, "--velocity", str(v), "--zones-per-mm", str(zones)]))
+    if "sensitivity" in groups:
+        base = ["--mass", "2.6", "--zones-per-mm", str(zones)]
+        variants = [
+            ("reference", ["--kind", "monolithic"]),
+            ("particles_2x2", ["--kind", "monolithic", "--particles", "4"]),
+            ("f_h_0.1", ["--kind", "monolithic", "--altitude-ratio", "0.1"]),
+            ("f_h_0.5", ["--kind", "monolithic", "--altitude-ratio", "0.5"]),
+            ("radius_50mm", ["--kind", "monolithic", "--target-radius", "50"]),
+            ("rim_free", ["--kind", "monolithic", "--rim", "free"]),
+            ("eps_0.3", ["--kind", "monolithic", "--elongation", "0.3"]),
+            ("eps_0.5", ["--kind", "monolithic", "--elongation", "0.5"]),
+            ("friction_0.1", ["--kind", "monolithic", "--friction", "0.1"]),
+            ("erosion_0.1", ["--kind", "monolithic", "--erosion", "0.1"]),
+            ("gap_tolerance_1e-6", ["--kind", "monolithic", "--gap-tolerance", "1e-6"]),
+            ("spaced_gap_1mm", ["--kind", "spaced", "--gap", "1"]),
+            ("spaced_gap_5mm", ["--kind", "spaced", "--gap", "5"]),
+            ("spaced_gap_20mm", ["--kind", "spaced", "--gap", "20"]),
+        ]
+        for name, options in variants:
+            out.append(("sensitivity", f"sensitivity_{name}", base + options))
+    return out
+
+
+def generate(outdir, name, options):
+    """Writes the scenario; returns its physics (the scenario without title and description) as text."""
+    subprocess.run([sys.executable, PAPER_CASE, "generate", os.path.join(outdir, "scenarios"), "--name", name] + options,
+                   check=True, stdout=subprocess.DEVNULL)
+    scenario = json.load(open(os.path.join(outdir, "scenarios", f"{name}.json")))
+    scenario.pop("title", None)
+    scenario.pop("description", None)
+    return json.dumps(scenario, sort_keys=True)
+
+
+def run_one(krug, outdir, name):
+    scenario = os.path.join(outdir, "scenarios", f"{name}.json")
+    run_dir = os.path.join(outdir, "runs", name)
+    if os.path.exists(os.path.join(run_dir, "summary.json")):
+        return name, "kept", 0.0
+    start = time.time()
+    with open(os.path.join(outdir, "logs", f"{name}.log"), "w") as log:
+        code = subprocess.run([krug, "run", scenario, "--out", run_dir, "--quiet", "--no-plots", "--no-pictures"],
+                              stdout=log, stderr=subprocess.STDOUT).returncode
+    return name, f"exit {code}", time.time() - start
+
+
+def plot_fig6(outdir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = list(csv.DictReader(open(os.path.join(outdir, "fig6.csv"))))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, mass in zip(axes, ("2.6g", "11g")):
+        for kind, marker in (("layered", "s"), ("monolithic", "o"), ("spaced", "^")):
+            points = sorted((int(r["run"].split("_H")[1].split("_")[0]), float(r["dU_over_U0"]))
+                            for r in rows if r["run"].startswith(f"fig6_{kind}_") and r["run"].endswith(mass))
+            if points:
+                ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, label=kind)
+        ax.set_xlabel("total thickness H (mm)")
+        ax.set_ylabel("dU / U0 (bullet body)")
+        ax.set_title(f"{mass.replace('g', ' g')} lead bullet, 355 m/s")
+        ax.grid(alpha=0.3)
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(outdir, "fig6.png"), dpi=110)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("outdir")
+    parser.add_argument("--krug", default=os.path.join(HERE, "..", "build", "apps", "krug", "krug"))
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--zones-per-mm", type=int, default=5)
+    parser.add_argument("--groups", default="mesh,default,fig6,velocity,sensitivity")
+    args = parser.parse_args()
+    groups = args.groups.split(",")
+    for sub in ("scenarios", "runs", "logs"):
+        os.makedirs(os.path.join(args.outdir, sub), exist_ok=True)
+    todo = cases(groups, args.zones_per_mm)
+    # The same physics under two names (the 3 mm, 5 zones/mm monolithic case is in three groups) runs
+    # once; the other names link to it.
+    first_of = {}
+    duplicates = {}
+    for _, name, options in todo:
+        key = generate(args.outdir, name, options)
+        if key in first_of:
+            duplicates[name] = first_of[key]
+        else:
+            first_of[key] = name
+    unique = [name for _, name, _ in todo if name not in duplicates]
+    start = time.time()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        futures = [pool.submit(run_one, args.krug, args.outdir, name) for name in unique]
+        for f in concurrent.futures.as_completed(futures):
+            name, status, seconds = f.result()
+            print(f"{name:40s} {status:8s} {seconds:7.1f} s", flush=True)
+    for name, original in duplicates.items():
+        link = os.path.join(args.outdir, "runs", name)
+        if not os.path.lexists(link):
+            os.symlink(original, link)
+    print(f"study: {len(unique)} runs ({len(todo)} cases) in {time.time() - start:.0f} s of wall time with "
+          f"{args.jobs} jobs", flush=True)
+    for group in groups:
+        runs = [os.path.join(args.outdir, "runs", name) for g, name, _ in todo if g == group]
+        runs = [r for r in runs if os.path.exists(os.path.join(r, "summary.json"))]
+        if runs:
+            subprocess.run([sys.executable, PAPER_CASE, "report", *runs, "--csv", os.path.join(args.outdir, f"{group}.csv")],
+                           check=True)
+    if "fig6" in groups and os.path.exists(os.path.join(args.outdir, "fig6.csv")):
+        plot_fig6(args.outdir)
+
+
+if __name__ == "__main__":
+    main()
