@@ -4,8 +4,9 @@
     scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 5]
                                   [--groups mesh,default,fig6,velocity,sensitivity]
 
-Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run with a
-summary.json already there is not repeated, so the study resumes where it stopped). Per group,
+Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
+directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
+interrupted run to repeat it). Per group,
 OUTDIR/GROUP.csv holds the report rows (scripts/paper_case.py report); OUTDIR/fig6.png plots the
 Fig. 6 group. Groups:
   mesh         2.6 g bullet, the three 3 mm targets at 5, 7 and 10 zones per mm
@@ -40,12 +41,6 @@ def cases(groups, zones):
         for z in (5, 7, 10):
             for kind in ("monolithic", "layered", "spaced"):
                 out.append(("mesh", f"mesh_{kind}_2.6g_z{z}", ["--mass", "2.6", "--kind", kind, "--zones-per-mm", str(z)]))
-    if "fig6" in groups:
-        for mass in ("2.6", "11"):
-            for h in (1, 2, 3, 4, 5):
-                for kind in ("monolithic", "layered", "spaced"):
-                    out.append(("fig6", f"fig6_{kind}_H{h}_{mass}g",
-                                ["--mass", mass, "--kind", kind, "--thickness", str(h), "--zones-per-mm", str(zones)]))
     if "velocity" in groups:
         for v in (350, 370, 390):
             for kind in ("monolithic", "layered", "spaced"):
@@ -71,6 +66,12 @@ def cases(groups, zones):
         ]
         for name, options in variants:
             out.append(("sensitivity", f"sensitivity_{name}", base + options))
+    if "fig6" in groups:
+        for mass in ("2.6", "11"):
+            for h in (1, 2, 3, 4, 5):
+                for kind in ("monolithic", "layered", "spaced"):
+                    out.append(("fig6", f"fig6_{kind}_H{h}_{mass}g",
+                                ["--mass", mass, "--kind", kind, "--thickness", str(h), "--zones-per-mm", str(zones)]))
     return out
 
 
@@ -87,8 +88,8 @@ def generate(outdir, name, options):
 def run_one(krug, outdir, name):
     scenario = os.path.join(outdir, "scenarios", f"{name}.json")
     run_dir = os.path.join(outdir, "runs", name)
-    if os.path.exists(os.path.join(run_dir, "summary.json")):
-        return name, "kept", 0.0
+    if os.path.exists(run_dir):
+        return name, "kept", 0.0  # done, or running in another study process: delete the directory to repeat it
     start = time.time()
     with open(os.path.join(outdir, "logs", f"{name}.log"), "w") as log:
         code = subprocess.run([krug, "run", scenario, "--out", run_dir, "--quiet", "--no-plots", "--no-pictures"],
