@@ -1,0 +1,213 @@
+// The paper's case (Gulidov & Shabalin 1996; reference/paper-case.md) as regression tests: the 2.6 g
+// lead bullet at 355 m/s through the three 3 mm 6061-T6 targets, at the coarse study resolution of
+// 5 zones per mm (examples/paper/coarse/, made by
+// `scripts/paper_case.py generate examples/paper/coarse --mass 2.6 --kind KIND --zones-per-mm 5`).
+// Each run goes through the library API with the scenario's own stop rule, as `krug run` does.
+//
+// Checked, as the validation issue asks:
+//  - perforation (the bullet's tip beyond the target's rear face, still moving on) and dU > 0;
+//  - ledgers: mass to round-off; axial momentum = initial + the fixed rims' boundary impulse; the
+//    energy ledger (the issue's bar is 1 %; it closes to round-off by construction, so 1e-9 is the
+//    bar here);
+//  - dU/U0 of the bullet body within the band of the mesh study (docs/validation.md, "Mesh"): the
+//    value at 10 zones per mm plus or minus the spread of 5, 7 and 10 zones per mm;
+//  - the paper's mechanisms: monolithic, a plug thinner than the plate on the axis; layered, the
+//    front plate damaged first and the two rear plates' damage starting on the axis at their rear
+//    faces (bending); spaced, the plates damaged in turn, each shedding a plug.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "krug/io/scenario.hpp"
+#include "krug/io/stop_rule.hpp"
+#include "krug/krug.hpp"
+#include "verification_support.hpp"
+
+using namespace krug;
+using krug::verification::format_number;
+using krug::verification::report;
+
+namespace {
+
+constexpr double bullet_radius = 2.78e-3;  // reference/paper-case.md
+
+// Earliest damage of a plate: when, at what radius, and how deep in the plate (0 front face, 1 rear
+// face, between the plate's extreme node positions within 0.1 mm of that radius at that moment).
+struct Onset {
+  double time = std::numeric_limits<double>::infinity();
+  double radius = 0.0;
+  double depth = 0.0;
+};
+
+struct PaperRun {
+  double initial_speed = 0.0;
+  double residual = 0.0;        // bullet body's mass-weighted axial speed at the end
+  double tip = 0.0;             // lowest z of the bullet's nodes
+  double rear_face = 0.0;       // initial z of the target's rear face
+  double mass_error = 0.0, momentum_error = 0.0, energy_drift = 0.0;
+  std::vector<Onset> first_damage;          // per plate, anywhere
+  std::vector<Onset> first_damage_on_axis;  // per plate, zone centroid within 1 mm of the axis
+  std::vector<std::size_t> fragments;       // per plate
+  double plug_thickness_on_axis = 0.0;      // monolithic: axial extent of the fast plate zones at r < 0.5 mm
+  std::string status;
+  double seconds = 0.0;
+};
+
+double depth_in_plate(const Mesh& mesh, const Body& plate, Vec2 at) {
+  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
+    if (!mesh.zones.active[z]) continue;
+    for (Index n : mesh.zones.corners[z]) {
+      if (std::abs(mesh.nodes.y[n] - at.y) > 1e-4) continue;
+      top = std::max(top, mesh.nodes.x[n]);
+      bottom = std::min(bottom, mesh.nodes.x[n]);
+    }
+  }
+  return top > bottom ? (top - at.x) / (top - bottom) : 0.0;
+}
+
+Vec2 centroid(const Mesh& mesh, Index z) {
+  Vec2 c{0.0, 0.0};
+  for (Index n : mesh.zones.corners[z]) c += 0.25 * mesh.nodes.position(n);
+  return c;
+}
+
+PaperRun run_paper_case(const std::string& file) {
+  const io::Scenario scenario = io::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / "coarse" / file);
+  REQUIRE(scenario.stop.has_value());
+  Simulation sim(scenario.setup);
+  io::StopMonitor stop(*scenario.stop);
+  const Body& bullet = sim.bodies().at(0);
+  const std::size_t plates = sim.bodies().size() - 1;
+  PaperRun run;
+  run.initial_speed = -sim.summarise(bullet).velocity.x;
+  run.first_damage.assign(plates, Onset{});
+  run.first_damage_on_axis.assign(plates, Onset{});
+  run.rear_face = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 1; p <= plates; ++p) run.rear_face = std::min(run.rear_face, sim.summarise(sim.bodies()[p]).bbox_min.x);
+  (void)stop.observe(sim.time(), sim.summarise(bullet).velocity);
+  run.status = "completed";
+  try {
+    while (!sim.finished()) {
+      sim.step();
+      const Mesh& mesh = sim.mesh();
+      for (std::size_t p = 0; p < plates; ++p) {
+        const Body& plate = sim.bodies()[p + 1];
+        for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
+          if (!mesh.zones.active[z] || !mesh.zones.damaged[z]) continue;
+          const double t = mesh.zones.damage_time[z];
+          const Vec2 c = centroid(mesh, z);
+          if (t < run.first_damage[p].time) run.first_damage[p] = {t, c.y, depth_in_plate(mesh, plate, c)};
+          if (c.y < 1e-3 && t < run.first_damage_on_axis[p].time) {
+            run.first_damage_on_axis[p] = {t, c.y, depth_in_plate(mesh, plate, c)};
+          }
+        }
+      }
+      if (stop.observe(sim.time(), sim.summarise(bullet).velocity)) break;
+    }
+  } catch (const NumericalFailure& failure) {
+    run.status = failure.what();
+  }
+  const BodySummary b = sim.summarise(bullet);
+  run.residual = -b.velocity.x;
+  run.tip = b.bbox_min.x;
+  const Ledger& ledger = sim.ledger();
+  run.mass_error = ledger.relative_mass_error();
+  run.momentum_error = std::abs(ledger.axial_momentum - (ledger.initial_axial_momentum + ledger.axial_boundary_impulse)) /
+                       std::abs(ledger.initial_axial_momentum);
+  run.energy_drift = ledger.relative_energy_drift();
+  for (std::size_t p = 1; p <= plates; ++p) run.fragments.push_back(sim.fragments(sim.bodies()[p]).size());
+  // The plug of a single plate: the plate's zones moving faster than half the bullet, on the axis.
+  if (plates == 1) {
+    const Mesh& mesh = sim.mesh();
+    const Body& plate = sim.bodies()[1];
+    double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+    for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
+      if (!mesh.zones.active[z] || centroid(mesh, z).y > 0.5e-3) continue;
+      Vec2 u{0.0, 0.0};
+      for (Index n : mesh.zones.corners[z]) u += 0.25 * mesh.nodes.velocity(n);
+      if (-u.x < 0.5 * run.residual) continue;
+      for (Index n : mesh.zones.corners[z]) {
+        top = std::max(top, mesh.nodes.x[n]);
+        bottom = std::min(bottom, mesh.nodes.x[n]);
+      }
+    }
+    run.plug_thickness_on_axis = top > bottom ? top - bottom : 0.0;
+  }
+  return run;
+}
+
+void check_common(const PaperRun& run, const std::string& name, double band_centre, double band_half_width) {
+  const double loss = (run.initial_speed - run.residual) / run.initial_speed;
+  report(name, "dU/U0 of the bullet body", format_number("%.3f", band_centre) + " +- " + format_number("%.3f", band_half_width),
+         loss, "", 0, 0.0);
+  CHECK(run.status == "completed");
+  CHECK(run.tip < run.rear_face);  // the nose is out beyond the rear face
+  CHECK(run.residual > 0.0);       // and still moving on: perforation
+  CHECK(loss > 0.0);
+  CHECK(std::abs(loss - band_centre) <= band_half_width);
+  CHECK(run.mass_error < 1e-12);
+  CHECK(run.momentum_error < 1e-9);
+  CHECK(run.energy_drift < 1e-9);
+}
+
+}  // namespace
+
+// The mesh study (docs/validation.md, "Mesh"; scripts/paper_study.py, group mesh): dU/U0 of the
+// bullet body at 5, 7 and 10 zones per mm. Band: their mean plus or minus their spread (max - min).
+//   monolithic 0.2362 0.2638 0.2648   mean 0.2549  spread 0.0286
+//   layered    0.2416 0.2121 0.1970   mean 0.2169  spread 0.0446
+//   spaced     0.1821 0.1751 0.1520   mean 0.1697  spread 0.0301
+// Orderings asserted: only those that hold at every level with gaps above the spreads, spaced below
+// monolithic (gaps 0.054, 0.089, 0.113) and spaced below layered (0.060, 0.037, 0.045): the loss of
+// each lies above the whole spaced band. Monolithic against layered changes sign with the mesh.
+TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones per mm", "[paper]") {
+  const PaperRun run = run_paper_case("monolithic_3mm_2.6g_z5.json");
+  check_common(run, "paper: monolithic 3 mm", 0.2549, 0.0286);
+  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1697 + 0.0301);
+  // The paper: "a plug somewhat thinner than the plate forms". The plate leaves at least two pieces,
+  // and its fast zones on the axis span less than the 3 mm plate but more than half of it.
+  CHECK(run.fragments.at(0) >= 2);
+  INFO("plug thickness on the axis " << run.plug_thickness_on_axis * 1e3 << " mm");
+  CHECK(run.plug_thickness_on_axis < 3e-3);
+  CHECK(run.plug_thickness_on_axis > 1.5e-3);
+  // "Fracture first under the nose": the first damaged zone lies within the bullet's radius.
+  CHECK(run.first_damage.at(0).radius < bullet_radius);
+}
+
+TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zones per mm", "[paper]") {
+  const PaperRun run = run_paper_case("layered_3x1mm_2.6g_z5.json");
+  check_common(run, "paper: layered 3 x 1 mm", 0.2169, 0.0446);
+  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1697 + 0.0301);
+  // The paper: "the front layer fractures first, the rear layers bend strongly and separate, and their
+  // fracture starts on the axis". Damage in order front to rear; in the two rear plates the first
+  // damage near the axis is at the rear face (bending tension), depth fraction above one half.
+  REQUIRE(run.first_damage.size() == 3);
+  CHECK(run.first_damage[0].time < run.first_damage[1].time);
+  CHECK(run.first_damage[1].time < run.first_damage[2].time);
+  for (std::size_t p = 1; p < 3; ++p) {
+    INFO("plate " << p + 1 << ": first damage on the axis at t = " << run.first_damage_on_axis[p].time * 1e6
+                  << " us, depth fraction " << run.first_damage_on_axis[p].depth);
+    CHECK(std::isfinite(run.first_damage_on_axis[p].time));
+    CHECK(run.first_damage_on_axis[p].depth > 0.5);
+  }
+}
+
+TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
+  const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
+  check_common(run, "paper: spaced 3 x 1 mm", 0.1697, 0.0301);
+  // The paper: "plugging of each plate in turn". Damage in order, and every plate in pieces.
+  REQUIRE(run.first_damage.size() == 3);
+  CHECK(run.first_damage[0].time < run.first_damage[1].time);
+  CHECK(run.first_damage[1].time < run.first_damage[2].time);
+  for (std::size_t p = 0; p < 3; ++p) {
+    INFO("plate " << p + 1 << ": " << run.fragments[p] << " fragments");
+    CHECK(run.fragments[p] >= 2);
+  }
+
+}
