@@ -31,22 +31,13 @@
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
+using krug::verification::body_from;
+
 using namespace krug;
 using krug::verification::format_number;
 using krug::verification::report;
 
 namespace {
-
-Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
-  Body body;
-  body.name = name;
-  body.material = material;
-  body.node_begin = patch.node_begin;
-  body.node_end = patch.node_end;
-  body.zone_begin = patch.zone_begin;
-  body.zone_end = patch.zone_end;
-  return body;
-}
 
 // Wilkins aluminium, Y -> infinity (verification.md E1): rho0 2785 kg/m^3, K 79.06 GPa, mu 27.6 GPa.
 constexpr double rho0 = 2785.0, bulk = 7.906e10, shear = 2.76e10;

@@ -29,6 +29,8 @@
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
+using krug::verification::body_from;
+
 using namespace krug;
 using krug::verification::format_number;
 using krug::verification::report;
@@ -42,17 +44,6 @@ std::string case_name(const char* what, GeometryKind geometry, int per_zone) {
 
 Material wilkins_aluminium() {
   return Material{"aluminium", 2785.0, LinearBulk{7.906e10, 2785.0}, PerfectlyPlastic{2.76e10, 3.0e8}};
-}
-
-Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
-  Body body;
-  body.name = name;
-  body.material = material;
-  body.node_begin = patch.node_begin;
-  body.node_end = patch.node_end;
-  body.zone_begin = patch.zone_begin;
-  body.zone_end = patch.zone_end;
-  return body;
 }
 
 // A block [0, 4 mm] x [0, 2 mm] (8 x 4 zones; in RZ its lower side is the axis) moving at 100 m/s

@@ -28,6 +28,8 @@
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
+using krug::verification::body_from;
+
 using namespace krug;
 using krug::verification::format_number;
 using krug::verification::report;
@@ -35,17 +37,6 @@ using krug::verification::report;
 namespace {
 
 constexpr double box_width = 0.02, box_height = 0.01, wall_speed = 30.0;
-
-Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
-  Body body;
-  body.name = name;
-  body.material = material;
-  body.node_begin = patch.node_begin;
-  body.node_end = patch.node_end;
-  body.zone_begin = patch.zone_begin;
-  body.zone_end = patch.zone_end;
-  return body;
-}
 
 SimulationSetup particles_in_a_box(double end_time) {
   SimulationSetup s;

@@ -30,6 +30,8 @@
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
+using krug::verification::body_from;
+
 using namespace krug;
 using krug::verification::format_number;
 using krug::verification::report;
@@ -38,17 +40,6 @@ namespace {
 
 constexpr double plate_thickness = 0.002, plate_radius = 0.006, zone_size = 0.00025, band_width = 0.0000625;
 constexpr double punch_radius = 0.002, punch_length = 0.004, punch_speed = 200.0;
-
-Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
-  Body body;
-  body.name = name;
-  body.material = material;
-  body.node_begin = patch.node_begin;
-  body.node_end = patch.node_end;
-  body.zone_begin = patch.zone_begin;
-  body.zone_end = patch.zone_end;
-  return body;
-}
 
 SimulationSetup punch_setup(double end_time, double floor_ratio) {
   SimulationSetup s;

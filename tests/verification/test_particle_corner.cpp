@@ -39,6 +39,8 @@
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
+using krug::verification::body_from;
+
 using namespace krug;
 using krug::verification::format_number;
 using krug::verification::report;
@@ -48,17 +50,6 @@ namespace {
 constexpr double zone_size = 1e-3;           // block zones and the particle's zone (m)
 constexpr double particle_radius = 0.5e-3;   // 0.5 sqrt(A) of its zone
 constexpr double penetration_limit = 1e-3;   // of the radius (the brief of E8)
-
-Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
-  Body body;
-  body.name = name;
-  body.material = material;
-  body.node_begin = patch.node_begin;
-  body.node_end = patch.node_end;
-  body.zone_begin = patch.zone_begin;
-  body.zone_end = patch.zone_end;
-  return body;
-}
 
 struct Shot {
   std::string name;

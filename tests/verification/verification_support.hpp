@@ -27,6 +27,18 @@
 
 namespace krug::verification {
 
+// A body over a generated patch of the mesh (tests that build their setup in code).
+inline Body body_from(const std::string& name, Index material, const generate::Patch& patch) {
+  Body body;
+  body.name = name;
+  body.material = material;
+  body.node_begin = patch.node_begin;
+  body.node_end = patch.node_end;
+  body.zone_begin = patch.zone_begin;
+  body.zone_end = patch.zone_end;
+  return body;
+}
+
 inline std::filesystem::path example_path(const std::string& file) {
   return std::filesystem::path(KRUG_EXAMPLES_DIR) / "verification" / file;
 }
