@@ -8,7 +8,8 @@ validation study comes from one definition (docs/validation.md):
                                           [--thickness H_MM] [--zones-per-mm N] [--gap MM]
                                           [--target-radius MM] [--rim fixed|free] [--elongation E]
                                           [--friction F] [--particles 1|4] [--velocity V]
-                                          [--altitude-ratio F] [--erosion F] [--gap-tolerance T]
+                                          [--altitude-ratio F] [--interior-altitude-ratio F]
+                                          [--erosion F] [--gap-tolerance T]
                                           [--name NAME]
 
 Units in the options are mm, g, m/s; the scenarios are SI. Facts (paper-case.md): lead rho0 11340,
@@ -119,7 +120,8 @@ def scenario(args):
         # Reactions converged to 1e-4 of a segment per step (the library's default is 1e-5, which
         # crowds of particles need); docs/validation.md gives the effect of 1e-6.
         "contact": {"pairs": pairs, "gap_tolerance": args.gap_tolerance},
-        "controls": {"fracture": {"particles_per_zone": args.particles, "altitude_ratio": args.altitude_ratio}},
+        "controls": {"fracture": {"particles_per_zone": args.particles, "altitude_ratio": args.altitude_ratio,
+                                  "interior_altitude_ratio": args.interior_altitude_ratio}},
         "output": {"snapshot_interval": end_time / 20.0, "history_interval": end_time / 2000.0},
         # The run ends once the bullet has felt no contact for a while: its mean velocity has stayed
         # within 0.5 % of U0 over `no_contact_time`, longer than a plate's transit (1 mm at U0: 3 us)
@@ -335,6 +337,7 @@ def main():
     g.add_argument("--particles", type=int, choices=[1, 4], default=1)
     g.add_argument("--altitude-ratio", type=float, default=0.25)
     g.add_argument("--velocity", type=float, default=355.0)
+    g.add_argument("--interior-altitude-ratio", type=float, default=0.1, help="f_i")
     g.add_argument("--gap-tolerance", type=float, default=1e-4, help="contact.gap_tolerance")
     g.add_argument("--erosion", type=float, default=0.0, help="bullet erosion altitude ratio (default 0: off)")
     g.add_argument("--name", default=None)

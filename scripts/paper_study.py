@@ -53,6 +53,8 @@ def cases(groups, zones):
             ("particles_2x2", ["--kind", "monolithic", "--particles", "4"]),
             ("f_h_0.1", ["--kind", "monolithic", "--altitude-ratio", "0.1"]),
             ("f_h_0.5", ["--kind", "monolithic", "--altitude-ratio", "0.5"]),
+            ("f_i_0.05", ["--kind", "monolithic", "--interior-altitude-ratio", "0.05"]),
+            ("f_i_0.2", ["--kind", "monolithic", "--interior-altitude-ratio", "0.2"]),
             ("radius_50mm", ["--kind", "monolithic", "--target-radius", "50"]),
             ("rim_free", ["--kind", "monolithic", "--rim", "free"]),
             ("eps_0.3", ["--kind", "monolithic", "--elongation", "0.3"]),
