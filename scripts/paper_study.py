@@ -9,7 +9,7 @@ directory exists is not repeated, so the study resumes where it stopped: delete 
 interrupted run to repeat it). Per group,
 OUTDIR/GROUP.csv holds the report rows (scripts/paper_case.py report); OUTDIR/fig6.png plots the
 Fig. 6 group. Groups:
-  mesh         2.6 g bullet, the three 3 mm targets at 5, 7 and 10 zones per mm
+  mesh         both bullets, the three 3 mm targets at 5, 7 and 10 zones per mm
   default      11 g bullet, the three 3 mm targets at 10 zones per mm (examples/paper/)
   fig6         dU/U0 against H = 1..5 mm, three kinds, 2.6 g and 11 g (n 1-mm plates in contact, one
                n-mm plate, n spaced 1-mm plates); at H = 1 the three kinds are the same target
@@ -38,9 +38,11 @@ def cases(groups, zones):
         for kind in ("monolithic", "layered", "spaced"):
             out.append(("default", f"default_{kind}_11g", ["--mass", "11", "--kind", kind]))
     if "mesh" in groups:
-        for z in (5, 7, 10):
-            for kind in ("monolithic", "layered", "spaced"):
-                out.append(("mesh", f"mesh_{kind}_2.6g_z{z}", ["--mass", "2.6", "--kind", kind, "--zones-per-mm", str(z)]))
+        for mass in ("2.6", "11"):
+            for z in (5, 7, 10):
+                for kind in ("monolithic", "layered", "spaced"):
+                    out.append(("mesh", f"mesh_{kind}_{mass}g_z{z}",
+                                ["--mass", mass, "--kind", kind, "--zones-per-mm", str(z)]))
     if "velocity" in groups:
         for v in (350, 370, 390):
             for kind in ("monolithic", "layered", "spaced"):
