@@ -435,6 +435,7 @@ BodySummary Simulation::summarise(const Body& body) const {
     mass += nodes.mass[p];
     momentum += nodes.mass[p] * nodes.velocity(p);
     moment += nodes.mass[p] * nodes.position(p);
+    if (nodes.mass[p] == 0.0) continue;  // a node whose zones have all left the grid: no longer the body's
     s.bbox_min = {std::min(s.bbox_min.x, nodes.x[p]), std::min(s.bbox_min.y, nodes.y[p])};
     s.bbox_max = {std::max(s.bbox_max.x, nodes.x[p]), std::max(s.bbox_max.y, nodes.y[p])};
   }

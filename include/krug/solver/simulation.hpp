@@ -68,7 +68,7 @@ struct BodySummary {
   double mass = 0.0;
   Vec2 velocity;   // mass-weighted mean velocity
   Vec2 centroid;   // mass-weighted node centroid
-  Vec2 bbox_min, bbox_max;
+  Vec2 bbox_min, bbox_max;  // over the nodes still carrying mass (not those of zones that left the grid)
   Index zones = 0; // active zones
 };
 
