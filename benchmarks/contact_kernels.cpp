@@ -24,7 +24,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <random>
 #include <string>
 #include <vector>
@@ -35,36 +34,13 @@
 #include "krug/contact/contact.hpp"
 #include "krug/contact/kernels.hpp"
 #include "krug/krug.hpp"
+#include "timing.hpp"
 
 namespace {
 
 using namespace krug;
-using Clock = std::chrono::steady_clock;
-
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
-}
-
-struct Timing {
-  double cpu_ns = 0.0;
-  double wall_ns = 0.0;
-  Timing& operator+=(const Timing& o) {
-    cpu_ns += o.cpu_ns;
-    wall_ns += o.wall_ns;
-    return *this;
-  }
-};
-
-template <class Run>
-Timing time_it(Run&& run) {
-  const double cpu0 = thread_cpu_ns();
-  const auto wall0 = Clock::now();
-  run();
-  const auto wall1 = Clock::now();
-  return {thread_cpu_ns() - cpu0, std::chrono::duration<double, std::nano>(wall1 - wall0).count()};
-}
+using krug::bench::time_it;
+using krug::bench::Timing;
 
 void per_item(benchmark::State& state, const char* name, Timing total, double items) {
   state.counters[fmt::format("ns_per_{}", name)] = items > 0.0 ? total.cpu_ns / items : 0.0;

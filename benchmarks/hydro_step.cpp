@@ -15,7 +15,6 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <ctime>
 #include <functional>
 #include <limits>
 #include <map>
@@ -27,34 +26,15 @@
 #include "krug/core/error.hpp"
 #include "krug/solver/simulation.hpp"
 #include "problems.hpp"
+#include "timing.hpp"
 
 namespace {
 
 using krug::Simulation;
 using krug::SimulationSetup;
-using Clock = std::chrono::steady_clock;
+using krug::bench::time_it;
+using krug::bench::Timing;
 
-// CPU time of the calling thread (ns): excludes the time the thread waits for a core.
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
-}
-
-// CPU and wall time of the cycles run by `run`.
-struct Timing {
-  double cpu_ns = 0.0;
-  double wall_ns = 0.0;
-};
-template <class Run>
-Timing time_cycles(Run&& run) {
-  const double cpu0 = thread_cpu_ns();
-  const auto wall0 = Clock::now();
-  run();
-  const auto wall1 = Clock::now();
-  const double cpu1 = thread_cpu_ns();
-  return {cpu1 - cpu0, std::chrono::duration<double, std::nano>(wall1 - wall0).count()};
-}
 
 constexpr long window_cycles = 50;
 
@@ -100,14 +80,13 @@ void window(benchmark::State& state, const Case& c, bool at_start) {
       Simulation sim = start;  // copy, not timed
       const long zone_cycles_before = sim.zone_cycles();
       const long cycle_before = sim.cycle();
-      const Timing t = time_cycles([&] {
+      const Timing t = time_it([&] {
         for (long k = 0; k < window_cycles && !sim.finished(); ++k) sim.step();
       });
       benchmark::DoNotOptimize(sim.mesh().nodes.x.data());
       benchmark::ClobberMemory();
       state.SetIterationTime(1e-9 * t.cpu_ns);
-      total.cpu_ns += t.cpu_ns;
-      total.wall_ns += t.wall_ns;
+      total += t;
       zone_cycles += sim.zone_cycles() - zone_cycles_before;
       cycles += sim.cycle() - cycle_before;
     }
@@ -128,14 +107,13 @@ void whole_run(benchmark::State& state, const Case& c) {
     for (auto _ : state) {
       Simulation sim(setup);  // copy of the set-up and initialisation, not timed
       zones = sim.mesh().zones.size();
-      const Timing t = time_cycles([&] {
+      const Timing t = time_it([&] {
         while (!sim.finished()) sim.step();
       });
       benchmark::DoNotOptimize(sim.mesh().nodes.x.data());
       benchmark::ClobberMemory();
       state.SetIterationTime(1e-9 * t.cpu_ns);
-      total.cpu_ns += t.cpu_ns;
-      total.wall_ns += t.wall_ns;
+      total += t;
       zone_cycles += sim.zone_cycles();
       cycles += sim.cycle();
     }

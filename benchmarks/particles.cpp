@@ -30,7 +30,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cmath>
-#include <ctime>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -44,6 +43,7 @@
 #include "krug/contact/kernels.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/solver/simulation.hpp"
+#include "timing.hpp"
 
 namespace {
 
@@ -51,7 +51,8 @@ using krug::Index;
 using krug::Particles;
 using krug::Simulation;
 using krug::Vec2;
-using Clock = std::chrono::steady_clock;
+using krug::bench::time_it;
+using krug::bench::Timing;
 
 constexpr double radius = 0.25e-3;        // m
 constexpr double density = 2785.0;        // kg/m^3 (planar: mass per metre = density x pi r^2)
@@ -60,26 +61,6 @@ constexpr double max_speed = 10.0;        // m/s
 constexpr int warm_up = 60;
 constexpr int window = 20;
 
-// CPU time of the calling thread (ns): excludes the time the thread waits for a core.
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
-}
-
-struct Timing {
-  double cpu_ns = 0.0;
-  double wall_ns = 0.0;
-};
-template <class Run>
-Timing timed(Run&& run) {
-  const double cpu0 = thread_cpu_ns();
-  const auto wall0 = Clock::now();
-  run();
-  const auto wall1 = Clock::now();
-  const double cpu1 = thread_cpu_ns();
-  return {cpu1 - cpu0, std::chrono::duration<double, std::nano>(wall1 - wall0).count()};
-}
 
 double particle_mass() { return density * std::numbers::pi * radius * radius; }
 
@@ -142,13 +123,12 @@ void box_step(benchmark::State& state) {
         sim = std::make_unique<Simulation>(start);  // not timed
         since_reset = 0;
       }
-      const Timing t = timed([&] { sim->step(); });
+      const Timing t = time_it([&] { sim->step(); });
       ++since_reset;
       benchmark::DoNotOptimize(sim->particles().x.data());
       benchmark::ClobberMemory();
       state.SetIterationTime(1e-9 * t.cpu_ns);
-      total.cpu_ns += t.cpu_ns;
-      total.wall_ns += t.wall_ns;
+      total += t;
       particle_steps += static_cast<double>(particles);
       candidates += static_cast<double>(sim->last_contact().candidates);
       active += static_cast<double>(sim->last_contact().active);
@@ -214,7 +194,7 @@ void kernel_particle_segment(benchmark::State& state) {
   Timing total;
   double pairs = 0.0;
   for (auto _ : state) {
-    const Timing t = timed([&] {
+    const Timing t = time_it([&] {
       for (std::size_t k = 0; k < kernel_pairs; ++k) {
         const krug::contact::DiscContact c = krug::contact::disc_segment_contact(
             particles.predicted(k, kernel_dt), nodes.predicted(2 * k, kernel_dt), nodes.predicted(2 * k + 1, kernel_dt), radius);
@@ -231,8 +211,7 @@ void kernel_particle_segment(benchmark::State& state) {
     benchmark::DoNotOptimize(particles.u.data());
     benchmark::ClobberMemory();
     state.SetIterationTime(1e-9 * t.cpu_ns);
-    total.cpu_ns += t.cpu_ns;
-    total.wall_ns += t.wall_ns;
+    total += t;
     pairs += static_cast<double>(kernel_pairs);
   }
   state.counters["ns_per_pair"] = total.cpu_ns / pairs;
@@ -257,7 +236,7 @@ void kernel_particle_particle(benchmark::State& state) {
   Timing total;
   double pairs = 0.0;
   for (auto _ : state) {
-    const Timing t = timed([&] {
+    const Timing t = time_it([&] {
       for (std::size_t k = 0; k < kernel_pairs; ++k) {
         const krug::contact::DiscContact c = krug::contact::disc_disc_contact(
             particles.predicted(2 * k, kernel_dt), radius, particles.predicted(2 * k + 1, kernel_dt), radius);
@@ -273,8 +252,7 @@ void kernel_particle_particle(benchmark::State& state) {
     benchmark::DoNotOptimize(particles.u.data());
     benchmark::ClobberMemory();
     state.SetIterationTime(1e-9 * t.cpu_ns);
-    total.cpu_ns += t.cpu_ns;
-    total.wall_ns += t.wall_ns;
+    total += t;
     pairs += static_cast<double>(kernel_pairs);
   }
   state.counters["ns_per_pair"] = total.cpu_ns / pairs;
@@ -296,12 +274,11 @@ void time_solve(benchmark::State& state, krug::contact::ContactSolver& solver, k
     mesh.nodes.u = node_u;
     mesh.nodes.v = node_v;
     krug::contact::ContactStatistics stats;
-    const Timing t = timed([&] { stats = solver.solve(mesh, particles, kernel_dt, kernel_dt); });
+    const Timing t = time_it([&] { stats = solver.solve(mesh, particles, kernel_dt, kernel_dt); });
     benchmark::DoNotOptimize(particles.u.data());
     benchmark::ClobberMemory();
     state.SetIterationTime(1e-9 * t.cpu_ns);
-    total.cpu_ns += t.cpu_ns;
-    total.wall_ns += t.wall_ns;
+    total += t;
     candidates += static_cast<double>(stats.candidates);
     active += static_cast<double>(stats.active);
     sweeps += stats.sweeps;
