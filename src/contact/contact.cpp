@@ -318,6 +318,13 @@ double ContactSolver::overlap_target(double start_gap, double dt_next) const {
   return start_gap + removal;
 }
 
+Vec2 ContactSolver::relative_velocity(const Candidate& c, double xi) const {
+  Vec2 relative = velocity(c.node);
+  if (c.a != -1) relative -= (1.0 - xi) * velocity(c.a);
+  if (c.b != -1) relative -= xi * velocity(c.b);
+  return relative;
+}
+
 double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   const Geometry g = contact_geometry(c, dt_next);
   const InverseMass w_point = inverse_mass(c.node), w_a = inverse_mass(c.a), w_b = inverse_mass(c.b);
@@ -336,10 +343,7 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   if (c.friction > 0.0) {
     const double wt = contact_inverse_mass(g.tangent, g.xi, w_point, w_a, w_b);
     if (wt > 0.0) {
-      Vec2 relative = velocity(c.node);
-      if (c.a != -1) relative -= (1.0 - g.xi) * velocity(c.a);
-      if (c.b != -1) relative -= g.xi * velocity(c.b);
-      const double slip = dot(relative, g.tangent);
+      const double slip = dot(relative_velocity(c, g.xi), g.tangent);
       const double friction_total = clamp_friction(c.tangent, -slip / (dt_mid * wt), c.friction * c.normal);
       const double friction_change = friction_total - c.tangent;
       c.tangent = friction_total;
@@ -378,11 +382,27 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
       const double target = overlap_target(g.start_gap, dt_next);
       c.normal = (w > 0.0 && g.valid) ? std::max(0.0, -c.weight * (g.gap - target) / (dt_mid * dt_next * w)) : 0.0;
     }
+    // Coulomb friction from the same predicted state: the tangential reaction that stops the predicted
+    // slip, within f R of the contact's own normal reaction.
+    for (std::size_t k = 0; k < candidates_.size(); ++k) {
+      Candidate& c = candidates_[k];
+      c.tangent = 0.0;
+      if (c.friction <= 0.0 || c.normal <= 0.0) continue;
+      const Geometry& g = geometry[k];
+      const double wt = contact_inverse_mass(g.tangent, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
+      if (wt <= 0.0) continue;
+      c.tangent = clamp_friction(0.0, -dot(relative_velocity(c, g.xi), g.tangent) / (dt_mid * wt), c.friction * c.normal);
+    }
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
       const Candidate& c = candidates_[k];
-      apply(c.node, geometry[k].normal, c.normal, dt_mid);
-      apply(c.a, geometry[k].normal, -(1.0 - geometry[k].xi) * c.normal, dt_mid);
-      apply(c.b, geometry[k].normal, -geometry[k].xi * c.normal, dt_mid);
+      const Geometry& g = geometry[k];
+      apply(c.node, g.normal, c.normal, dt_mid);
+      apply(c.a, g.normal, -(1.0 - g.xi) * c.normal, dt_mid);
+      apply(c.b, g.normal, -g.xi * c.normal, dt_mid);
+      if (c.tangent == 0.0) continue;
+      apply(c.node, g.tangent, c.tangent, dt_mid);
+      apply(c.a, g.tangent, -(1.0 - g.xi) * c.tangent, dt_mid);
+      apply(c.b, g.tangent, -g.xi * c.tangent, dt_mid);
     }
     stats.sweeps = 1;
   } else {
@@ -390,21 +410,24 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     // the candidates that push (normal > 0) or whose gap is within `working_margin` of their length.
     // Visiting any other candidate changes nothing (its reaction clamps to zero), so the result is
     // that of full sweeps unless a far candidate closes meanwhile; a full check confirms every exit.
-    // Convergence: the deepest remaining penetration relative to the contact's length, measured after
-    // the whole sweep (each update closes its own gap, but the updates after it can reopen it).
+    // Convergence: the largest violation of the contact conditions relative to the contact's length,
+    // measured after the whole sweep (each update closes its own gap, but the updates after it can
+    // reopen it): a penetration anywhere, or an opening where a reaction still pushes (a pushing
+    // contact must close to its target gap, else its reaction is too large).
     constexpr double working_margin = 0.1;
     working_.clear();
-    const auto remaining = [&](const Candidate& c) {
-      const Geometry g = contact_geometry(c, dt_next);
-      return g.valid ? (g.gap - overlap_target(g.start_gap, dt_next)) / std::max(c.length, 1e-300)
+    const auto remaining = [&](std::size_t k) {
+      const Geometry g = contact_geometry(candidates_[k], dt_next);
+      return g.valid ? (g.gap - overlap_target(g.start_gap, dt_next)) / std::max(candidates_[k].length, 1e-300)
                      : std::numeric_limits<double>::infinity();
     };
+    const auto violation = [](const Candidate& c, double gap) { return c.normal > 0.0 ? std::abs(gap) : -gap; };
     const auto full_check = [&] {
       double worst = 0.0;
       working_.clear();
       for (std::size_t k = 0; k < candidates_.size(); ++k) {
-        const double gap = remaining(candidates_[k]);
-        worst = std::max(worst, -gap);
+        const double gap = remaining(k);
+        worst = std::max(worst, violation(candidates_[k], gap));
         if (candidates_[k].normal > 0.0 || gap < working_margin) working_.push_back(static_cast<Index>(k));
       }
       return worst;
@@ -416,7 +439,10 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
       for (Index k : working_) update(candidates_[static_cast<std::size_t>(k)], dt_mid, dt_next);
       ++stats.sweeps;
       worst = 0.0;
-      for (Index k : working_) worst = std::max(worst, -remaining(candidates_[static_cast<std::size_t>(k)]));
+      for (Index k : working_) {
+        const auto j = static_cast<std::size_t>(k);
+        worst = std::max(worst, violation(candidates_[j], remaining(j)));
+      }
       if (worst <= setup_.controls.gap_tolerance) worst = full_check();
     }
   }

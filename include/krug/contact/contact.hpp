@@ -112,6 +112,8 @@ class ContactSolver {
                                    double weight, bool self, double dt_next);
   void add_particle_candidates(double dt_next);
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
+  // Velocity of the contact's point relative to the other side at xi (a wall stands still).
+  Vec2 relative_velocity(const Candidate& c, double xi) const;
   // Returns the gap after this update (for the convergence check).
   double update(Candidate& c, double dt_mid, double dt_next);
   double overlap_target(double start_gap, double dt_next) const;
