@@ -26,9 +26,17 @@ std::optional<StopMonitor> stop_monitor(const Scenario& scenario) {
   return StopMonitor(*scenario.stop);
 }
 
-Vec2 stop_velocity(const Simulation& simulation, const StopMonitor& monitor) {
-  const auto body = static_cast<std::size_t>(monitor.rule().body_index);
-  return simulation.summarise(simulation.bodies()[body]).velocity;
+// Feeds the stop rule one sample: the body's velocity, and whether it is clear of the rule's plane
+// (every node that carries mass beyond it, the way the body first moved along the first axis).
+bool observe_stop(const Simulation& simulation, StopMonitor& monitor) {
+  const StopRule& rule = monitor.rule();
+  const BodySummary body = simulation.summarise(simulation.bodies()[static_cast<std::size_t>(rule.body_index)]);
+  bool clear = true;
+  if (rule.clear_of) {
+    const bool moving_down = monitor.state().started ? monitor.state().initial_velocity.x < 0.0 : body.velocity.x < 0.0;
+    clear = moving_down ? body.bbox_max.x < *rule.clear_of : body.bbox_min.x > *rule.clear_of;
+  }
+  return monitor.observe(simulation.time(), body.velocity, clear);
 }
 
 // The loop after setup (fresh or restored): steps, outputs, stop rule, checkpoints, interruption.
@@ -57,7 +65,7 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     while (!simulation.finished()) {
       simulation.step();
       recorder.observe(simulation);
-      if (loop.stop && loop.stop->observe(simulation.time(), stop_velocity(simulation, *loop.stop))) {
+      if (loop.stop && observe_stop(simulation, *loop.stop)) {
         result.stopped_by = "stop rule";
         break;
       }
@@ -130,7 +138,7 @@ RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
                        options.picture);
   LoopState loop;
   loop.stop = stop_monitor(scenario);
-  if (loop.stop) (void)loop.stop->observe(simulation.time(), stop_velocity(simulation, *loop.stop));
+  if (loop.stop) (void)observe_stop(simulation, *loop.stop);
   loop.next_checkpoint_time = scenario.output.checkpoint_interval;
   return run_loop(scenario, simulation, recorder, loop, options);
 }

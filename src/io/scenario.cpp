@@ -562,6 +562,11 @@ StopRule read_stop_rule(JsonObject spec, const std::vector<Body>& bodies) {
   spec.resolve("body", name);
   rule.no_contact_time = spec.number("no_contact_time", Range::positive());
   rule.velocity_change = spec.number("velocity_change", rule.velocity_change, Range{0.0, 1.0, true});
+  if (spec.has("clear_of")) {
+    rule.clear_of = spec.number("clear_of");
+  } else {
+    spec.optional_raw("clear_of");  // named among the valid keys
+  }
   spec.finish();
   return rule;
 }

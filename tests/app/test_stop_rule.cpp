@@ -67,6 +67,15 @@ TEST_CASE("the stop rule on made-up velocity histories", "[app][stop]") {
     auto v = [](double t) { return Vec2{100.0, t < 1.0 ? 0.0 : t < 2.0 ? 10.0 * (t - 1.0) : 10.0}; };
     CHECK(stop_time(monitor, v, 0.01, 10.0) == Approx(2.9).margin(0.011));
   }
+  SECTION("a body not yet clear of the rule's plane holds the stop; once clear it stops at once") {
+    StopMonitor monitor(rule(1.0, 0.01));
+    auto v = [](double t) { return Vec2{t < 2.0 ? 300.0 : t < 3.0 ? 300.0 - 100.0 * (t - 2.0) : 200.0, 0.0}; };
+    double stopped = -1.0;
+    for (double t = 0.0; t <= 10.0 && stopped < 0.0; t += 0.01) {
+      if (monitor.observe(t, v(t), t >= 6.0)) stopped = t;  // clear of the plane from t = 6 on
+    }
+    CHECK(stopped == Approx(6.0).margin(0.011));  // the velocity window has held since 3.97
+  }
   SECTION("a body that starts at rest uses the largest speed it reaches as its scale") {
     StopMonitor monitor(rule(1.0, 0.01));
     auto v = [](double t) { return Vec2{t < 1.0 ? 0.0 : t < 2.0 ? 50.0 * (t - 1.0) : 50.0, 0.0}; };
@@ -109,6 +118,25 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
     CHECK(krug::io::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
     CHECK(krug::test::summary_without_timing(stopped / "summary.json") == krug::test::summary_without_timing(dir / "summary.json"));
   }
+}
+
+TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body has passed it (E1)", "[app][stop]") {
+  // The flyer occupies x in [-5, 0] mm and moves towards +x; after the separation it is at rest.
+  Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  const auto run = [&](double plane, const std::string& name) {
+    document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}, {"clear_of", plane}};
+    const auto scenario = krug::io::parse_scenario(document.dump(), name + ".json");
+    krug::io::RunOptions options;
+    options.output_directory = krug::test::scratch(name);
+    return krug::io::run_scenario(scenario, options);
+  };
+  // A plane behind the flyer: clear from the start, so the rule stops the run as without the plane.
+  const auto behind = run(-6e-3, "stop_rule_clear_behind");
+  CHECK(behind.stopped_by == "stop rule");
+  // The target's face: the flyer never passes it, so the run goes on to its end time.
+  const auto face = run(0.0, "stop_rule_clear_face");
+  CHECK(face.status == krug::io::RunStatus::completed);
+  CHECK(face.stopped_by == "end_time");
 }
 
 TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {

@@ -44,6 +44,10 @@ struct StopRule {
   Index body_index = 0;
   double no_contact_time = 0.0;   // s
   double velocity_change = 0.01;  // fraction of the body's initial speed
+  // Optional: a plane of constant first coordinate (m) that every node of the body still carrying mass
+  // must have passed, the way the body first moved along that axis, before the run may stop (a long
+  // projectile still sliding through its hole is not done).
+  std::optional<double> clear_of;
 };
 
 struct Scenario {

@@ -10,6 +10,7 @@
 //     each component of V has stayed within f S of its current value over the window
 //     [t - no_contact_time, t]: no contact impulse larger than f S times the body's mass.
 // Each component's window extremes are kept in monotonic queues (O(1) per cycle).
+// With `clear_of`, the run also waits until the caller reports the body clear of that plane.
 #include <deque>
 #include <utility>
 
@@ -33,8 +34,9 @@ class StopMonitor {
 
   explicit StopMonitor(StopRule rule) : rule_(std::move(rule)) {}
 
-  // After every cycle (and once at the start): true when the run should stop.
-  bool observe(double time, Vec2 velocity);
+  // After every cycle (and once at the start): true when the run should stop. `clear`: the body has
+  // passed the rule's clear_of plane (true when the rule has none).
+  bool observe(double time, Vec2 velocity, bool clear = true);
 
   const StopRule& rule() const { return rule_; }
   const State& state() const { return state_; }
