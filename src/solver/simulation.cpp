@@ -272,13 +272,14 @@ void Simulation::compute_forces() {
 void Simulation::predict_velocities() {
   NodeFields& nodes = mesh_.nodes;
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
-  nodes.u_old = nodes.u;
-  nodes.v_old = nodes.v;
+  // u^{n-1/2} becomes u_old by exchanging the arrays; every u is then written from it.
+  nodes.u_old.swap(nodes.u);
+  nodes.v_old.swap(nodes.v);
   particles_.u_old = particles_.u;  // particles feel no F: u* = u^{n-1/2}
   particles_.v_old = particles_.v;
   for (Index p = 0; p < nodes.size(); ++p) {
-    nodes.u[p] += dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
-    nodes.v[p] += dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
+    nodes.u[p] = nodes.u_old[p] + dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
+    nodes.v[p] = nodes.v_old[p] + dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
   }
   // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
   for (const NodeConstraint& c : constraints_) {

@@ -82,6 +82,9 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
+  // k_s mu: without shear stiffness (a gas, or k_s = 0) the stiffness state never changes.
+  const double stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
+  const bool hourglass_stiff = stiffness_modulus != 0.0;
   const double cq_s = params.viscosity.quadratic * params.shock_slope;
   const double cl = params.viscosity.linear;
   NodeFields& nodes = mesh.nodes;
@@ -181,9 +184,10 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
       double bb = 0.0;
       for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
-      const double stiffness = zones.damaged[z] ? 0.0 : params.hourglass.stiffness;  // damaged: no shear stiffness
-      zones.hourglass_x[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.x;
-      zones.hourglass_y[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.y;
+      if (hourglass_stiff && !zones.damaged[z]) {  // damaged: no shear stiffness
+        zones.hourglass_x[z] += stiffness_modulus * params.previous_time_step * bb / area * rate.x;
+        zones.hourglass_y[z] += stiffness_modulus * params.previous_time_step * bb / area * rate.y;
+      }
       const double viscous = params.hourglass.viscous * rho * c * std::sqrt(area);
       const double scale = axisymmetric && !area_weighted ? mean_radius : 1.0;
       const Vec2 generalised{scale * (viscous * rate.x + zones.hourglass_x[z]),
