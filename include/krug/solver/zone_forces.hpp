@@ -148,6 +148,7 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
     if constexpr (Visc == ViscosityModel::edge) {
       const Vec2 centre = quad::centre(x);
       double viscous_speed = 0.0;
+#pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
       for (int k = 0; k < 4; ++k) {
         const int k1 = quad::next(k);
         if (n[k] == n[k1]) continue;

@@ -33,7 +33,7 @@ struct ZoneUpdateResult {
 // x^{n+1/2} = x^{n+1} - dt^{n+1/2} u^{n+1/2} / 2. In-plane: L = (1/A) sum_p u_p (x) dA/dx_p (Wilkins);
 // hoop (RZ): D_tt = (dV/dt)/V - (dA/dt)/A with the same mid-step gradients (never divides by r).
 template <GeometryKind G>
-inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>& u, double dt,
+[[gnu::always_inline]] inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>& u, double dt,
                            StrainRate& rate, double& spin) {
   quad::Corners mid;
   for (int p = 0; p < 4; ++p) mid[p] = x_new[p] - (0.5 * dt) * u[p];
