@@ -44,6 +44,15 @@ struct ArtificialPower {
   double hourglass = 0.0;
 };
 
+// The limiter of an edge is a function of its nodes and its continuations only. Where the two zones
+// of an edge continue it through the same nodes, the first zone (in zone order) computes it and the
+// second reads it: the values are bitwise the same (every difference and product changes sign
+// exactly, and psi is symmetric in the two ratios).
+struct SharedEdgeLimiters {
+  const Index* mirror = nullptr;  // 4 per zone: mirrored_edge_slots(); null: every zone computes its own
+  double* value = nullptr;        // 4 per zone: psi of the compressing edges of the current step
+};
+
 namespace detail {
 
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
@@ -71,6 +80,21 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
   return std::isfinite(psi) ? std::clamp(psi, 0.0, 1.0) : 0.0;
 }
 
+// The limiter of edge k of zone z, from the mirrored edge of an earlier zone of this loop (which
+// started at zone_begin) where there is one, else computed and kept for a later zone.
+inline double zone_edge_limiter(const Mesh& mesh, Index z, int k, Index zone_begin, Vec2 du, Vec2 dx,
+                                SharedEdgeLimiters shared) {
+  const std::size_t slot = 4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k);
+  const Index mirror = shared.mirror ? shared.mirror[slot] : -1;
+  if (mirror >= 4 * zone_begin && mesh.zones.active[mirror / 4]) return shared.value[mirror];
+  const ZoneCorners& n = mesh.zones.corners[z];
+  const double dx_norm = norm(dx);
+  const double psi = edge_limiter(mesh.nodes, mesh.zones.edge_before[z][k], n[k], n[quad::next(k)],
+                                  mesh.zones.edge_after[z][k], (1.0 / dx_norm) * du, (1.0 / dx_norm) * dx);
+  if (shared.value) shared.value[slot] = psi;
+  return psi;
+}
+
 }  // namespace detail
 
 // Adds the corner forces of the active zones in [zone_begin, zone_end) to nodes.force_{x,y}, stores
@@ -78,7 +102,8 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
 // read from nodes.u/v (t^{n-1/2}). `node_scale` is s_p for the area-weighted form (else unused).
 template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_end,
-                                       const ZoneForceParams& params, const double* node_scale) {
+                                       const ZoneForceParams& params, const double* node_scale,
+                                       SharedEdgeLimiters shared_limiters = {}) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
@@ -157,11 +182,8 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
         if (dot(du, dx) >= 0.0) continue;  // expanding or shearing edge: no viscosity
         const double du_norm = norm(du);
         if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
-        const double dx_norm = norm(dx);
         const double psi = params.viscosity.limiter
-                               ? detail::edge_limiter(nodes, zones.edge_before[z][k], n[k], n[k1],
-                                                      zones.edge_after[z][k], (1.0 / dx_norm) * du,
-                                                      (1.0 / dx_norm) * dx)
+                               ? detail::zone_edge_limiter(mesh, z, k, zone_begin, du, dx, shared_limiters)
                                : 0.0;
         const double active = 1.0 - psi;
         if (!(active > 0.0)) continue;
