@@ -117,6 +117,7 @@ struct ZoneBatch {
   double rate_x[zone_batch], rate_y[zone_batch];            // hourglass rate q = sum gamma_p u_p
   double bb[zone_batch];                                    // sum b_p . b_p
   double hourglass_power[zone_batch];
+  double edge_compression[4][zone_batch];                   // du . dx of edge (p, p+1), < 0: compressing
 
   quad::Corners corners(int i) const {
     return {Vec2{x[0][i], y[0][i]}, Vec2{x[1][i], y[1][i]}, Vec2{x[2][i], y[2][i]}, Vec2{x[3][i], y[3][i]}};
@@ -177,6 +178,12 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       }
       batch.area[i] = area;
       batch.pressure[i] = zones.pressure[first + i];
+      if constexpr (Visc == ViscosityModel::edge) {
+        const std::array<Vec2, 4> u = batch.velocities(i);
+        for (int k = 0; k < 4; ++k) {
+          batch.edge_compression[k][i] = dot(u[quad::next(k)] - u[k], x[quad::next(k)] - x[k]);
+        }
+      }
     }
     if constexpr (Visc == ViscosityModel::scalar) {
       for (int i = 0; i < count; ++i) {
@@ -254,6 +261,12 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       for (int i = 0; i < count; ++i) {
         const Index z = first + i;
         if (!zones.active[z]) continue;
+        bool expanding = true;  // no edge compressing: no viscosity
+        for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
+        if (expanding) {
+          zones.viscous_speed[z] = 0.0;
+          continue;
+        }
         const ZoneCorners& n = zones.corners[z];
         const quad::Corners x = batch.corners(i);
         const std::array<Vec2, 4> u = batch.velocities(i);
@@ -267,7 +280,7 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
           if (n[k] == n[k1]) continue;
           const Vec2 du = u[k1] - u[k];
           const Vec2 dx = x[k1] - x[k];
-          if (dot(du, dx) >= 0.0) continue;  // expanding or shearing edge: no viscosity
+          if (batch.edge_compression[k][i] >= 0.0) continue;  // expanding or shearing edge: no viscosity
           const double du_norm = norm(du);
           if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
           const double psi = params.viscosity.limiter

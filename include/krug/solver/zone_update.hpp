@@ -86,8 +86,12 @@ struct UpdateBatch {
 }  // namespace detail
 
 template <GeometryKind G, class EquationOfState, class StrengthModel>
-ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& eos,
-                              const StrengthModel& strength, const ZoneUpdateParams& params) {
+ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& material_eos,
+                              const StrengthModel& material_strength, const ZoneUpdateParams& params) {
+  // Local copies: the compiler then knows that the zone stores do not change the material
+  // parameters, and keeps what depends only on them (such as the EOS's compression limit) out of the loop.
+  const EquationOfState eos = material_eos;
+  const StrengthModel strength = material_strength;
   constexpr bool has_strength = !std::is_same_v<StrengthModel, NoStrength>;
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const NodeFields& nodes = mesh.nodes;
