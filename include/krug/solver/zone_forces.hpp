@@ -166,8 +166,7 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       }
     }
 
-    // Geometry; with the scalar viscosity, Wilkins' q from the volumetric strain rate
-    // div u = (dV/dt)/V, compression only.
+    // Geometry, and for the edge viscosity du . dx of every edge (< 0: compressing).
     for (int i = 0; i < count; ++i) {
       const quad::Corners x = batch.corners(i);
       const double area = quad::area(x);
@@ -185,6 +184,7 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
         }
       }
     }
+    // Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only.
     if constexpr (Visc == ViscosityModel::scalar) {
       for (int i = 0; i < count; ++i) {
         const Index z = first + i;
