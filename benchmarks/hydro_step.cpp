@@ -42,6 +42,7 @@ struct Case {
   std::string name;  // problem/size, e.g. sedov_planar/200x200
   std::function<SimulationSetup()> setup;
   long checkpoint_cycles = std::numeric_limits<long>::max();  // checkpoint: half the end time or this cycle
+  bool plastic = false;  // report the fraction of zones that yield during the window
 };
 
 // The checkpoint state, built once per case and reused by every repetition.
@@ -55,6 +56,19 @@ const Simulation& checkpoint(const Case& c) {
     found = cache.emplace(c.name, std::move(sim)).first;
   }
   return *found->second;
+}
+
+// Fraction of the active zones whose plastic strain grew between two states of the same problem.
+double yielding_fraction(const Simulation& before, const Simulation& after) {
+  const krug::ZoneFields& a = before.mesh().zones;
+  const krug::ZoneFields& b = after.mesh().zones;
+  long active = 0, yielding = 0;
+  for (krug::Index z = 0; z < a.size(); ++z) {
+    if (!b.active[z]) continue;
+    ++active;
+    if (b.plastic_strain[z] > a.plastic_strain[z]) ++yielding;
+  }
+  return active > 0 ? static_cast<double>(yielding) / static_cast<double>(active) : 0.0;
 }
 
 void report(benchmark::State& state, Timing total, long zone_cycles, long cycles, long zones) {
@@ -89,6 +103,7 @@ void window(benchmark::State& state, const Case& c, bool at_start) {
       total += t;
       zone_cycles += sim.zone_cycles() - zone_cycles_before;
       cycles += sim.cycle() - cycle_before;
+      if (c.plastic) state.counters["yielding_fraction"] = yielding_fraction(start, sim);
     }
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -130,6 +145,7 @@ int main(int argc, char** argv) {
   namespace problems = krug::problems;
   // Sod: a strip four times longer than wide (square zones); Sedov: n x n quarters.
   constexpr long rz_checkpoint = 1000;
+  constexpr long copper_checkpoint_per_zone = 2;  // cycles per zone of the cylinder's length
   const std::vector<Case> cases = {
       {"sod_planar/100x25", [] { return problems::sod_strip(100, 25); }},
       {"sod_planar/400x100", [] { return problems::sod_strip(400, 100); }},
@@ -137,6 +153,8 @@ int main(int argc, char** argv) {
       {"sedov_planar/200x200", [] { return problems::sedov_planar(200); }},
       {"sedov_rz/50x50", [] { return problems::sedov_axisymmetric(50); }, rz_checkpoint},
       {"sedov_rz/200x200", [] { return problems::sedov_axisymmetric(200); }, rz_checkpoint},
+      {"copper_rz/50x50", [] { return problems::copper_cylinder_rz(50); }, copper_checkpoint_per_zone * 50, true},
+      {"copper_rz/200x200", [] { return problems::copper_cylinder_rz(200); }, copper_checkpoint_per_zone * 200, true},
   };
   for (const Case& c : cases) {
     benchmark::RegisterBenchmark(fmt::format("window/{}", c.name).c_str(),

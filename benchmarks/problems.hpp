@@ -15,6 +15,11 @@
 //                      E = 0.851072 (shock radius 1 at t = 1), the half space z >= 0 per radian gets
 //                      E / (4 pi) in the zone at the origin; the axis r = 0 is held by the solver,
 //                      slip plane z = 0 (and the outer sides); end time 1.
+//   copper_cylinder_rz Elastic-plastic impact (SI units): a copper cylinder, length = radius = 10 mm,
+//                      in RZ, Mie-Grueneisen EOS (c0 3940 m/s, s 1.49, Gamma0 2.0, rho0 8930) and
+//                      Prandtl-Reuss plasticity with linear hardening (mu 43.3 GPa, Y0 400 MPa,
+//                      H 100 MPa), moving at 300 m/s onto a slip plane at z = 0 (the impact face's
+//                      nodes are held axially from t = 0); no contact; end time 20 us.
 //
 // Zones are square in every problem. The background specific energy of the Sedov problems is a tiny
 // positive value (1e-12 of the blast zone's) instead of 0, so that every zone has a defined sound
@@ -122,6 +127,35 @@ inline SimulationSetup sedov_axisymmetric(int n) {
   detail::hold_side(setup, patch, "i_max", true, false);
   detail::hold_side(setup, patch, "j_max", false, true);
   setup.controls.end_time = sedov_end_time;
+  return setup;
+}
+
+inline constexpr double copper_cylinder_end_time = 20e-6;
+
+// Copper cylinder striking a slip plane (RZ), n x n square zones on z in [0, 10 mm], r in [0, 10 mm].
+inline SimulationSetup copper_cylinder_rz(int n, double impact_speed = 300.0) {
+  constexpr double side = 0.01, rho0 = 8930.0;
+  SimulationSetup setup;
+  setup.geometry = GeometryKind::axisymmetric;
+  const generate::Patch patch = generate::rectangle(setup.mesh, generate::graded_axis(0.0, {{side, n, 1.0}}),
+                                                    generate::graded_axis(0.0, {{side, n, 1.0}}), /*body*/ 0);
+  MieGruneisen eos;
+  eos.reference_density = rho0;
+  eos.bulk_sound_speed = 3940.0;
+  eos.hugoniot_slope = 1.49;
+  eos.gruneisen = 2.0;
+  LinearHardening strength;
+  strength.shear_modulus = 43.3e9;
+  strength.yield_stress = 400e6;
+  strength.hardening_modulus = 100e6;
+  setup.materials.push_back(Material{"copper", rho0, eos, strength});
+  setup.bodies.push_back({"cylinder", 0, patch.node_begin, patch.node_end, patch.zone_begin, patch.zone_end});
+  for (Index z = patch.zone_begin; z < patch.zone_end; ++z) setup.mesh.zones.density[z] = rho0;
+  for (Index p = patch.node_begin; p < patch.node_end; ++p) setup.mesh.nodes.u[p] = -impact_speed;
+  // The axis (j_min, r = 0) is held by the solver; the impact face z = 0 slides on the plane.
+  detail::hold_side(setup, patch, "i_min", true, false);
+  for (const Index node : patch.sides.at("i_min")) setup.mesh.nodes.u[node] = 0.0;
+  setup.controls.end_time = copper_cylinder_end_time;
   return setup;
 }
 

@@ -103,6 +103,27 @@ void build_edge_continuations(Mesh& mesh) {
   }
 }
 
+std::vector<Index> mirrored_edge_slots(const Mesh& mesh) {
+  const ZoneFields& zones = mesh.zones;
+  std::vector<Index> slots(4 * static_cast<std::size_t>(zones.size()), -1);
+  for (Index z = 0; z < zones.size(); ++z) {
+    const ZoneCorners& c = zones.corners[z];
+    for (int k = 0; k < 4; ++k) {
+      const Index w = zones.neighbour[z][k];
+      if (w < 0 || w >= z) continue;
+      for (int j = 0; j < 4; ++j) {
+        const ZoneCorners& d = zones.corners[w];
+        const bool same_edge = d[j] == c[quad::next(k)] && d[quad::next(j)] == c[k];
+        if (same_edge && zones.edge_before[w][j] == zones.edge_after[z][k] &&
+            zones.edge_after[w][j] == zones.edge_before[z][k]) {
+          slots[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k)] = 4 * w + j;
+        }
+      }
+    }
+  }
+  return slots;
+}
+
 std::vector<BoundarySegment> boundary_segments(const Mesh& mesh, Index zone_begin, Index zone_end) {
   std::vector<BoundarySegment> segments;
   if (!mesh.zones.neighbours_built) {

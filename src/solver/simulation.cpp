@@ -16,11 +16,13 @@ namespace {
 
 // Picks the compile-time variant of the force kernel once per body.
 ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, Mesh& mesh, const Body& body,
-                                     const ZoneForceParams& params, const double* scale) {
+                                     const ZoneForceParams& params, const double* scale,
+                                     SharedEdgeLimiters limiters) {
   auto run = [&]<GeometryKind G>() {
     switch (model) {
       case ViscosityModel::edge:
-        return accumulate_zone_forces<G, ViscosityModel::edge>(mesh, body.zone_begin, body.zone_end, params, scale);
+        return accumulate_zone_forces<G, ViscosityModel::edge>(mesh, body.zone_begin, body.zone_end, params, scale,
+                                                               limiters);
       case ViscosityModel::scalar:
         return accumulate_zone_forces<G, ViscosityModel::scalar>(mesh, body.zone_begin, body.zone_end, params, scale);
       case ViscosityModel::off:
@@ -154,6 +156,7 @@ void Simulation::initialise() {
     }, material.eos);
   }
   build_edge_continuations(mesh_);
+  share_edge_limiters();
 
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
   double stable = std::numeric_limits<double>::infinity();
@@ -243,6 +246,13 @@ void Simulation::restore(SimulationState s) {
   controlling_zone_ = s.controlling_zone;
   deepest_contact_gap_ = s.deepest_contact_gap;
   topology_changed_ = true;  // contact boundaries are rebuilt from the restored connectivity
+  share_edge_limiters();
+}
+
+void Simulation::share_edge_limiters() {
+  if (controls_.viscosity.model != ViscosityModel::edge || !controls_.viscosity.limiter) return;
+  mirrored_edges_ = mirrored_edge_slots(mesh_);
+  edge_limiters_.assign(mirrored_edges_.size(), 0.0);
 }
 
 void Simulation::cap_next_time_step(double dt) {
@@ -262,8 +272,10 @@ void Simulation::compute_forces() {
     params.hourglass = controls_.hourglass;
     params.axisymmetric_form = controls_.axisymmetric_form;
     params.previous_time_step = time_step_previous_;
+    const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
+                                      edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
     const ArtificialPower power = dispatch_zone_forces(geometry_, controls_.viscosity.model, mesh_, body, params,
-                                                       area_weighted_scale_.data());
+                                                       area_weighted_scale_.data(), limiters);
     ledger_.energy.viscous += dt_mid * power.viscous;
     ledger_.energy.hourglass += dt_mid * power.hourglass;
   }
@@ -272,13 +284,14 @@ void Simulation::compute_forces() {
 void Simulation::predict_velocities() {
   NodeFields& nodes = mesh_.nodes;
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
-  nodes.u_old = nodes.u;
-  nodes.v_old = nodes.v;
+  // u^{n-1/2} becomes u_old by exchanging the arrays; every u is then written from it.
+  nodes.u_old.swap(nodes.u);
+  nodes.v_old.swap(nodes.v);
   particles_.u_old = particles_.u;  // particles feel no F: u* = u^{n-1/2}
   particles_.v_old = particles_.v;
   for (Index p = 0; p < nodes.size(); ++p) {
-    nodes.u[p] += dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
-    nodes.v[p] += dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
+    nodes.u[p] = nodes.u_old[p] + dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
+    nodes.v[p] = nodes.v_old[p] + dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
   }
   // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
   for (const NodeConstraint& c : constraints_) {

@@ -77,7 +77,7 @@ struct MieGruneisen {
                                 : std::numeric_limits<double>::infinity();
   }
 
-  ReferenceCurve reference_curve(double mu) const {
+  [[gnu::always_inline]] ReferenceCurve reference_curve(double mu) const {
     const double stiffness = reference_density * bulk_sound_speed * bulk_sound_speed;  // rho0 c0^2
     if (mu <= 0.0) return {stiffness * mu, stiffness};
     const double limit = compression_limit();

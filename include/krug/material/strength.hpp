@@ -348,7 +348,7 @@ inline PlasticReturn radial_return(const JohnsonCook& model, const Deviator& tri
 // the step they act over. The caller adds d eps_p to the zone's plastic strain and
 // plastic_work_density * volume to its plastic-work report.
 template <class StrengthModel>
-PlasticReturn update_deviator(const StrengthModel& model, const Deviator& previous, const StrainRate& rate,
+[[gnu::always_inline]] inline PlasticReturn update_deviator(const StrengthModel& model, const Deviator& previous, const StrainRate& rate,
                               double spin, double dt, const PlasticState& state,
                               StressRotation rotation = StressRotation::exact) {
   const Deviator rotated = rotate_objectively(previous, spin, dt, rotation);

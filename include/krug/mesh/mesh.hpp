@@ -89,6 +89,12 @@ struct BoundarySegment {
 // Recomputes edge_before/edge_after for all zones from the connectivity of active zones.
 void build_edge_continuations(Mesh& mesh);
 
+// For each zone edge (slot 4 z + k): the slot 4 w + j of the same edge in the zone w < z across it,
+// if w continues the edge through the same nodes as z does (edge_before and edge_after mirrored), so
+// that the viscosity limiter of the edge is the same seen from either zone; -1 otherwise (a boundary
+// edge, or a node where the two zones find different continuations, e.g. of valence 3).
+std::vector<Index> mirrored_edge_slots(const Mesh& mesh);
+
 // Boundary segments of the active zones in [zone_begin, zone_end), in zone order: edges without a
 // neighbour (zones.neighbour, kept up to date as zones leave the grid).
 std::vector<BoundarySegment> boundary_segments(const Mesh& mesh, Index zone_begin, Index zone_end);

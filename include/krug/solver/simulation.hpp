@@ -147,6 +147,7 @@ class Simulation {
   void choose_time_step();        // 8. dt^{n+3/2}
 
   void initialise();
+  void share_edge_limiters();  // the edge-viscosity limiter computed once per edge (from the connectivity)
   void measure_ledger();
   void book_contact_work(double dt_mid);
   enum class ConversionRule { surface, interior, erosion };
@@ -172,6 +173,8 @@ class Simulation {
   Controls controls_;
   Ledger ledger_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p (area-weighted RZ form only)
+  std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
+  std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
 
   double time_ = 0.0;
   long cycle_ = 0;

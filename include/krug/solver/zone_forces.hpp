@@ -44,6 +44,15 @@ struct ArtificialPower {
   double hourglass = 0.0;
 };
 
+// The limiter of an edge is a function of its nodes and its continuations only. Where the two zones
+// of an edge continue it through the same nodes, the first zone (in zone order) computes it and the
+// second reads it: the values are bitwise the same (every difference and product changes sign
+// exactly, and psi is symmetric in the two ratios).
+struct SharedEdgeLimiters {
+  const Index* mirror = nullptr;  // 4 per zone: mirrored_edge_slots(); null: every zone computes its own
+  double* value = nullptr;        // 4 per zone: psi of the compressing edges of the current step
+};
+
 namespace detail {
 
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
@@ -71,6 +80,56 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
   return std::isfinite(psi) ? std::clamp(psi, 0.0, 1.0) : 0.0;
 }
 
+// The limiter of edge k of zone z, from the mirrored edge of an earlier zone of this loop (which
+// started at zone_begin) where there is one, else computed and kept for a later zone.
+inline double zone_edge_limiter(const Mesh& mesh, Index z, int k, Index zone_begin, Vec2 du, Vec2 dx,
+                                SharedEdgeLimiters shared) {
+  const std::size_t slot = 4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k);
+  const Index mirror = shared.mirror ? shared.mirror[slot] : -1;
+  if (mirror >= 4 * zone_begin && mesh.zones.active[mirror / 4]) return shared.value[mirror];
+  const ZoneCorners& n = mesh.zones.corners[z];
+  const double dx_norm = norm(dx);
+  const double psi = edge_limiter(mesh.nodes, mesh.zones.edge_before[z][k], n[k], n[quad::next(k)],
+                                  mesh.zones.edge_after[z][k], (1.0 / dx_norm) * du, (1.0 / dx_norm) * dx);
+  if (shared.value) shared.value[slot] = psi;
+  return psi;
+}
+
+}  // namespace detail
+
+// Zones are processed in batches: their corner positions and velocities are gathered into arrays
+// (structure of arrays), the geometry, stress and hourglass corner forces are computed in loops
+// without branches over the batch (vectorised by the compiler), the edge viscosity zone by zone,
+// and the corner forces are added to the nodes in zone order. Every value is computed by the same
+// operations as one zone at a time, so the result does not depend on the batching.
+namespace detail {
+
+constexpr int zone_batch = 32;
+
+struct ZoneBatch {
+  double x[4][zone_batch], y[4][zone_batch];                // corner positions
+  double u[4][zone_batch], v[4][zone_batch];                // corner velocities
+  double bx[4][zone_batch], by[4][zone_batch];              // dA/dx_p
+  double area[zone_batch], mean_radius[zone_batch];         // A, V/A (RZ)
+  double pressure[zone_batch];                              // p (+ q for the scalar viscosity)
+  double fx[4][zone_batch], fy[4][zone_batch];              // corner forces
+  double gamma[4][zone_batch];                              // hourglass shape vector
+  double rate_x[zone_batch], rate_y[zone_batch];            // hourglass rate q = sum gamma_p u_p
+  double bb[zone_batch];                                    // sum b_p . b_p
+  double hourglass_power[zone_batch];
+  double edge_compression[4][zone_batch];                   // du . dx of edge (p, p+1), < 0: compressing
+
+  quad::Corners corners(int i) const {
+    return {Vec2{x[0][i], y[0][i]}, Vec2{x[1][i], y[1][i]}, Vec2{x[2][i], y[2][i]}, Vec2{x[3][i], y[3][i]}};
+  }
+  std::array<Vec2, 4> velocities(int i) const {
+    return {Vec2{u[0][i], v[0][i]}, Vec2{u[1][i], v[1][i]}, Vec2{u[2][i], v[2][i]}, Vec2{u[3][i], v[3][i]}};
+  }
+  std::array<Vec2, 4> area_gradient(int i) const {
+    return {Vec2{bx[0][i], by[0][i]}, Vec2{bx[1][i], by[1][i]}, Vec2{bx[2][i], by[2][i]}, Vec2{bx[3][i], by[3][i]}};
+  }
+};
+
 }  // namespace detail
 
 // Adds the corner forces of the active zones in [zone_begin, zone_end) to nodes.force_{x,y}, stores
@@ -78,127 +137,227 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
 // read from nodes.u/v (t^{n-1/2}). `node_scale` is s_p for the area-weighted form (else unused).
 template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_end,
-                                       const ZoneForceParams& params, const double* node_scale) {
+                                       const ZoneForceParams& params, const double* node_scale,
+                                       SharedEdgeLimiters shared_limiters = {}) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
+  // k_s mu: without shear stiffness (a gas, or k_s = 0) the stiffness state never changes.
+  const double stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
+  const bool hourglass_stiff = stiffness_modulus != 0.0;
   const double cq_s = params.viscosity.quadratic * params.shock_slope;
   const double cl = params.viscosity.linear;
   NodeFields& nodes = mesh.nodes;
   ZoneFields& zones = mesh.zones;
   ArtificialPower power;
+  detail::ZoneBatch batch;
 
-  for (Index z = zone_begin; z < zone_end; ++z) {
-    if (!zones.active[z]) continue;
-    const ZoneCorners& n = zones.corners[z];
-    const quad::Corners x = mesh.corner_positions(z);
-    const std::array<Vec2, 4> u{nodes.velocity(n[0]), nodes.velocity(n[1]), nodes.velocity(n[2]),
-                                nodes.velocity(n[3])};
-    const double area = quad::area(x);
-    const std::array<Vec2, 4> b = quad::area_gradient(x);
-    const double rho = zones.density[z];
-    const double c = zones.sound_speed[z];
+  for (Index first = zone_begin; first < zone_end; first += detail::zone_batch) {
+    const int count = static_cast<int>(std::min<Index>(detail::zone_batch, zone_end - first));
 
-    // Cauchy stress without artificial viscosity: sigma = s - p I.
-    double pressure = zones.pressure[z];
-    double volume = area;
-    std::array<Vec2, 4> volume_gradient{};
-    if constexpr (axisymmetric) {
-      volume = quad::axisymmetric_volume(x);
-      volume_gradient = quad::axisymmetric_volume_gradient(x);
-    }
-    if constexpr (Visc == ViscosityModel::scalar) {
-      // Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only.
-      double volume_rate = 0.0;
-      for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], axisymmetric ? volume_gradient[p] : b[p]);
-      const double divergence = volume_rate / volume;
-      if (divergence < 0.0) {
-        const double length = quad::smallest_altitude(x, area);
-        const double speed = cq_s * length * -divergence;
-        pressure += rho * length * -divergence * (cq_s * length * -divergence + cl * c);
-        zones.viscous_speed[z] = 2.0 * speed;
-      } else {
-        zones.viscous_speed[z] = 0.0;
+    // Gather (inactive zones too: their values are computed and never used).
+    for (int i = 0; i < count; ++i) {
+      const ZoneCorners& n = zones.corners[first + i];
+      for (int p = 0; p < 4; ++p) {
+        batch.x[p][i] = nodes.x[n[p]];
+        batch.y[p][i] = nodes.y[n[p]];
+        batch.u[p][i] = nodes.u[n[p]];
+        batch.v[p][i] = nodes.v[n[p]];
       }
     }
-    const double sxx = zones.deviator_xx[z] - pressure;
-    const double syy = zones.deviator_yy[z] - pressure;
-    const double sxy = zones.deviator_xy[z];
-    const double stt = zones.deviator_zz[z] - pressure;
 
-    std::array<Vec2, 4> f;
-    const double mean_radius = axisymmetric ? volume / area : 1.0;
-    for (int p = 0; p < 4; ++p) {
-      if constexpr (axisymmetric) {
-        if (area_weighted) {
-          f[p] = {-(sxx * b[p].x + sxy * b[p].y),
-                  -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius};
-        } else {
-          f[p] = {-(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x),
-                  -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y)};
+    // Geometry, and for the edge viscosity du . dx of every edge (< 0: compressing).
+    for (int i = 0; i < count; ++i) {
+      const quad::Corners x = batch.corners(i);
+      const double area = quad::area(x);
+      const std::array<Vec2, 4> b = quad::area_gradient(x);
+      for (int p = 0; p < 4; ++p) {
+        batch.bx[p][i] = b[p].x;
+        batch.by[p][i] = b[p].y;
+      }
+      batch.area[i] = area;
+      batch.pressure[i] = zones.pressure[first + i];
+      if constexpr (Visc == ViscosityModel::edge) {
+        const std::array<Vec2, 4> u = batch.velocities(i);
+        for (int k = 0; k < 4; ++k) {
+          batch.edge_compression[k][i] = dot(u[quad::next(k)] - u[k], x[quad::next(k)] - x[k]);
         }
-      } else {
-        f[p] = {-(sxx * b[p].x + sxy * b[p].y), -(sxy * b[p].x + syy * b[p].y)};
       }
+    }
+    // Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only.
+    if constexpr (Visc == ViscosityModel::scalar) {
+      for (int i = 0; i < count; ++i) {
+        const Index z = first + i;
+        if (!zones.active[z]) continue;
+        const quad::Corners x = batch.corners(i);
+        const std::array<Vec2, 4> u = batch.velocities(i);
+        const std::array<Vec2, 4> b = batch.area_gradient(i);
+        const double area = batch.area[i];
+        double volume = area;
+        std::array<Vec2, 4> volume_gradient = b;
+        if constexpr (axisymmetric) {
+          volume = quad::axisymmetric_volume(x);
+          volume_gradient = quad::axisymmetric_volume_gradient(x);
+        }
+        double volume_rate = 0.0;
+        for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], volume_gradient[p]);
+        const double divergence = volume_rate / volume;
+        const double rho = zones.density[z];
+        if (divergence < 0.0) {
+          const double length = quad::smallest_altitude(x, area);
+          const double speed = cq_s * length * -divergence;
+          batch.pressure[i] += rho * length * -divergence * (cq_s * length * -divergence + cl * zones.sound_speed[z]);
+          zones.viscous_speed[z] = 2.0 * speed;
+        } else {
+          zones.viscous_speed[z] = 0.0;
+        }
+      }
+    }
+
+    // Stress corner forces, sigma = s - p I (one loop per form, so that each has no branch).
+    auto stress_forces = [&]<bool AreaWeighted>() {
+      for (int i = 0; i < count; ++i) {
+        const Index z = first + i;
+        const std::array<Vec2, 4> b = batch.area_gradient(i);
+        const double pressure = batch.pressure[i];
+        const double sxx = zones.deviator_xx[z] - pressure;
+        const double syy = zones.deviator_yy[z] - pressure;
+        const double sxy = zones.deviator_xy[z];
+        const double stt = zones.deviator_zz[z] - pressure;
+        const double area = batch.area[i];
+        if constexpr (axisymmetric) {
+          const quad::Corners x = batch.corners(i);
+          const double volume = quad::axisymmetric_volume(x);
+          const double mean_radius = volume / area;
+          batch.mean_radius[i] = mean_radius;
+          if constexpr (AreaWeighted) {
+            for (int p = 0; p < 4; ++p) {
+              batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
+              batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius;
+            }
+          } else {
+            const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
+            for (int p = 0; p < 4; ++p) {
+              batch.fx[p][i] = -(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x);
+              batch.fy[p][i] = -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y);
+            }
+          }
+        } else {
+          batch.mean_radius[i] = 1.0;
+          for (int p = 0; p < 4; ++p) {
+            batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
+            batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y);
+          }
+        }
+      }
+    };
+    if (area_weighted) {
+      stress_forces.template operator()<true>();
+    } else {
+      stress_forces.template operator()<false>();
     }
 
     if constexpr (Visc == ViscosityModel::edge) {
-      const Vec2 centre = quad::centre(x);
-      double viscous_speed = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        const int k1 = quad::next(k);
-        if (n[k] == n[k1]) continue;
-        const Vec2 du = u[k1] - u[k];
-        const Vec2 dx = x[k1] - x[k];
-        if (dot(du, dx) >= 0.0) continue;  // expanding or shearing edge: no viscosity
-        const double du_norm = norm(du);
-        if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
-        const double dx_norm = norm(dx);
-        const double psi = params.viscosity.limiter
-                               ? detail::edge_limiter(nodes, zones.edge_before[z][k], n[k], n[k1],
-                                                      zones.edge_after[z][k], (1.0 / dx_norm) * du,
-                                                      (1.0 / dx_norm) * dx)
-                               : 0.0;
-        const double active = 1.0 - psi;
-        if (!(active > 0.0)) continue;
-        const Vec2 midpoint = 0.5 * (x[k] + x[k1]);
-        double face = norm(midpoint - centre);
-        if (axisymmetric && !area_weighted) face *= 0.5 * (midpoint.y + centre.y);
-        const double quadratic = cq_s * du_norm;
-        const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
-        const double kappa = q_over_du * face;  // force per unit velocity difference
-        f[k] += kappa * du;
-        f[k1] -= kappa * du;
-        power.viscous += kappa * dot(du, du);
-        viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+      for (int i = 0; i < count; ++i) {
+        const Index z = first + i;
+        if (!zones.active[z]) continue;
+        bool expanding = true;  // no edge compressing: no viscosity
+        for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
+        if (expanding) {
+          zones.viscous_speed[z] = 0.0;
+          continue;
+        }
+        const ZoneCorners& n = zones.corners[z];
+        const quad::Corners x = batch.corners(i);
+        const std::array<Vec2, 4> u = batch.velocities(i);
+        const double rho = zones.density[z];
+        const double c = zones.sound_speed[z];
+        const Vec2 centre = quad::centre(x);
+        double viscous_speed = 0.0;
+#pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
+        for (int k = 0; k < 4; ++k) {
+          const int k1 = quad::next(k);
+          if (n[k] == n[k1]) continue;
+          const Vec2 du = u[k1] - u[k];
+          const Vec2 dx = x[k1] - x[k];
+          if (batch.edge_compression[k][i] >= 0.0) continue;  // expanding or shearing edge: no viscosity
+          const double du_norm = norm(du);
+          if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
+          const double psi = params.viscosity.limiter
+                                 ? detail::zone_edge_limiter(mesh, z, k, zone_begin, du, dx, shared_limiters)
+                                 : 0.0;
+          const double active = 1.0 - psi;
+          if (!(active > 0.0)) continue;
+          const Vec2 midpoint = 0.5 * (x[k] + x[k1]);
+          double face = norm(midpoint - centre);
+          if (axisymmetric && !area_weighted) face *= 0.5 * (midpoint.y + centre.y);
+          const double quadratic = cq_s * du_norm;
+          const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
+          const double kappa = q_over_du * face;  // force per unit velocity difference
+          batch.fx[k][i] += kappa * du.x;
+          batch.fy[k][i] += kappa * du.y;
+          batch.fx[k1][i] -= kappa * du.x;
+          batch.fy[k1][i] -= kappa * du.y;
+          power.viscous += kappa * dot(du, du);
+          viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+        }
+        zones.viscous_speed[z] = viscous_speed;
       }
-      zones.viscous_speed[z] = viscous_speed;
     }
 
     if (hourglass_on) {
-      const std::array<double, 4> gamma = quad::hourglass_shape(x, b, area);
-      Vec2 rate{};
-      for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
-      double bb = 0.0;
-      for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
-      const double stiffness = zones.damaged[z] ? 0.0 : params.hourglass.stiffness;  // damaged: no shear stiffness
-      zones.hourglass_x[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.x;
-      zones.hourglass_y[z] += stiffness * params.shear_modulus * params.previous_time_step * bb / area * rate.y;
-      const double viscous = params.hourglass.viscous * rho * c * std::sqrt(area);
-      const double scale = axisymmetric && !area_weighted ? mean_radius : 1.0;
-      const Vec2 generalised{scale * (viscous * rate.x + zones.hourglass_x[z]),
-                             scale * (viscous * rate.y + zones.hourglass_y[z])};
-      for (int p = 0; p < 4; ++p) f[p] -= gamma[p] * generalised;
-      power.hourglass += dot(generalised, rate);
+      for (int i = 0; i < count; ++i) {
+        const quad::Corners x = batch.corners(i);
+        const std::array<Vec2, 4> u = batch.velocities(i);
+        const std::array<Vec2, 4> b = batch.area_gradient(i);
+        const std::array<double, 4> gamma = quad::hourglass_shape(x, b, batch.area[i]);
+        Vec2 rate{};
+        for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
+        double bb = 0.0;
+        for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
+        for (int p = 0; p < 4; ++p) batch.gamma[p][i] = gamma[p];
+        batch.rate_x[i] = rate.x;
+        batch.rate_y[i] = rate.y;
+        batch.bb[i] = bb;
+      }
+      if (hourglass_stiff) {
+        for (int i = 0; i < count; ++i) {
+          const Index z = first + i;
+          if (!zones.active[z] || zones.damaged[z]) continue;  // damaged: no shear stiffness
+          const double area = batch.area[i];
+          zones.hourglass_x[z] += stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+          zones.hourglass_y[z] += stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
+        }
+      }
+      for (int i = 0; i < count; ++i) {
+        const Index z = first + i;
+        const double viscous = params.hourglass.viscous * zones.density[z] * zones.sound_speed[z] * std::sqrt(batch.area[i]);
+        const double scale = axisymmetric && !area_weighted ? batch.mean_radius[i] : 1.0;
+        const Vec2 generalised{scale * (viscous * batch.rate_x[i] + zones.hourglass_x[z]),
+                               scale * (viscous * batch.rate_y[i] + zones.hourglass_y[z])};
+        for (int p = 0; p < 4; ++p) {
+          batch.fx[p][i] -= batch.gamma[p][i] * generalised.x;
+          batch.fy[p][i] -= batch.gamma[p][i] * generalised.y;
+        }
+        batch.hourglass_power[i] = dot(generalised, Vec2{batch.rate_x[i], batch.rate_y[i]});
+      }
     }
 
-    double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
-    for (int p = 0; p < 4; ++p) {
-      if (area_weighted) f[p] *= node_scale[n[p]];
-      corner[2 * p] = f[p].x;
-      corner[2 * p + 1] = f[p].y;
-      nodes.force_x[n[p]] += f[p].x;
-      nodes.force_y[n[p]] += f[p].y;
+    // Scatter in zone order.
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      if (!zones.active[z]) continue;
+      const ZoneCorners& n = zones.corners[z];
+      if (hourglass_on) power.hourglass += batch.hourglass_power[i];
+      double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+      for (int p = 0; p < 4; ++p) {
+        Vec2 f{batch.fx[p][i], batch.fy[p][i]};
+        if (area_weighted) f *= node_scale[n[p]];
+        corner[2 * p] = f.x;
+        corner[2 * p + 1] = f.y;
+        nodes.force_x[n[p]] += f.x;
+        nodes.force_y[n[p]] += f.y;
+      }
     }
   }
   return power;

@@ -2,6 +2,7 @@
 // Step 5 of the time step for one body: new geometry at t^{n+1}, density, compatible internal energy
 // m de = -dt^n sum_p f_p . ubar_p (ubar = mid-step velocity), pressure and sound speed from the EOS,
 // and each zone's stable time step for step 8 (DESIGN.md section 2).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,7 +34,7 @@ struct ZoneUpdateResult {
 // x^{n+1/2} = x^{n+1} - dt^{n+1/2} u^{n+1/2} / 2. In-plane: L = (1/A) sum_p u_p (x) dA/dx_p (Wilkins);
 // hoop (RZ): D_tt = (dV/dt)/V - (dA/dt)/A with the same mid-step gradients (never divides by r).
 template <GeometryKind G>
-inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>& u, double dt,
+[[gnu::always_inline]] inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>& u, double dt,
                            StrainRate& rate, double& spin) {
   quad::Corners mid;
   for (int p = 0; p < 4; ++p) mid[p] = x_new[p] - (0.5 * dt) * u[p];
@@ -60,91 +61,149 @@ inline void mid_step_rates(const quad::Corners& x_new, const std::array<Vec2, 4>
   spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
 }
 
+namespace detail {
+
+// With strength, the strain rate and spin (and the area and volume at t^{n+1}) of a batch of zones,
+// from their corner positions and velocities gathered into arrays: a loop without branches that the
+// compiler vectorises (the same operations as for one zone at a time).
+constexpr int update_batch = 32;
+
+struct UpdateBatch {
+  double x[4][update_batch], y[4][update_batch];  // corner positions x^{n+1}
+  double u[4][update_batch], v[4][update_batch];  // corner velocities u^{n+1/2}
+  double area[update_batch], volume[update_batch];
+  double rate_xx[update_batch], rate_yy[update_batch], rate_xy[update_batch], rate_zz[update_batch];
+  double spin[update_batch];
+
+  quad::Corners corners(int i) const {
+    return {Vec2{x[0][i], y[0][i]}, Vec2{x[1][i], y[1][i]}, Vec2{x[2][i], y[2][i]}, Vec2{x[3][i], y[3][i]}};
+  }
+  std::array<Vec2, 4> velocities(int i) const {
+    return {Vec2{u[0][i], v[0][i]}, Vec2{u[1][i], v[1][i]}, Vec2{u[2][i], v[2][i]}, Vec2{u[3][i], v[3][i]}};
+  }
+};
+
+}  // namespace detail
+
 template <GeometryKind G, class EquationOfState, class StrengthModel>
-ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& eos,
-                              const StrengthModel& strength, const ZoneUpdateParams& params) {
+ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& material_eos,
+                              const StrengthModel& material_strength, const ZoneUpdateParams& params) {
+  // Local copies: the compiler then knows that the zone stores do not change the material
+  // parameters, and keeps what depends only on them (such as the EOS's compression limit) out of the loop.
+  const EquationOfState eos = material_eos;
+  const StrengthModel strength = material_strength;
   constexpr bool has_strength = !std::is_same_v<StrengthModel, NoStrength>;
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const NodeFields& nodes = mesh.nodes;
   ZoneFields& zones = mesh.zones;
   ZoneUpdateResult result;
   double result_plastic_work = 0.0;
+  detail::UpdateBatch batch;
 
-  for (Index z = zone_begin; z < zone_end; ++z) {
-    if (!zones.active[z]) continue;
-    const ZoneCorners& n = zones.corners[z];
-    const quad::Corners x = mesh.corner_positions(z);
-    const double area = quad::area(x);
-    const double volume = axisymmetric ? quad::axisymmetric_volume(x) : area;
+  for (Index first = zone_begin; first < zone_end; first += detail::update_batch) {
+    const int count = static_cast<int>(std::min<Index>(detail::update_batch, zone_end - first));
 
-    // Compatible energy: the work of the corner forces over the step at the mid-step velocity.
-    const double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
-    double work = 0.0;
-    for (int p = 0; p < 4; ++p) {
-      const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
-      const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
-      work += corner[2 * p] * ubar + corner[2 * p + 1] * vbar;
-    }
-    const double energy = zones.specific_energy[z] - params.time_step_mid * work / zones.mass[z];
-
-    if (!(area > 0.0) || !(volume > 0.0) || !std::isfinite(energy)) {
-      if (result.failed_zone < 0) result.failed_zone = z;
-      continue;
-    }
-    const double old_volume = zones.volume[z];
-    const double density = zones.mass[z] / volume;
-
-    const bool damaged = zones.damaged[z] != 0;
+    // With strength, the strain rate and spin of the step (the mid-step geometry), batched.
     if constexpr (has_strength) {
-      if (!damaged) {  // a damaged zone keeps s = 0
-      // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
-      const std::array<Vec2, 4> u{nodes.velocity(n[0]), nodes.velocity(n[1]), nodes.velocity(n[2]), nodes.velocity(n[3])};
-      StrainRate rate;
-      double spin = 0.0;
-      mid_step_rates<G>(x, u, params.time_step_next, rate, spin);
-      const Deviator previous{zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z]};
-      PlasticState state;
-      state.plastic_strain = zones.plastic_strain[z];
-      if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
-        state.strain_rate = equivalent_strain_rate(rate);
-        state.temperature = strength.temperature_from_energy(energy);
+      for (int i = 0; i < count; ++i) {
+        const ZoneCorners& n = zones.corners[first + i];
+        for (int p = 0; p < 4; ++p) {
+          batch.x[p][i] = nodes.x[n[p]];
+          batch.y[p][i] = nodes.y[n[p]];
+          batch.u[p][i] = nodes.u[n[p]];
+          batch.v[p][i] = nodes.v[n[p]];
+        }
       }
-      const PlasticReturn plastic = update_deviator(strength, previous, rate, spin, params.time_step_next, state);
-      zones.deviator_xx[z] = plastic.deviator.xx;
-      zones.deviator_yy[z] = plastic.deviator.yy;
-      zones.deviator_xy[z] = plastic.deviator.xy;
-      zones.deviator_zz[z] = plastic.deviator.zz;
-      zones.plastic_strain[z] += plastic.plastic_strain_increment;
-      result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
+      for (int i = 0; i < count; ++i) {
+        const quad::Corners x = batch.corners(i);
+        batch.area[i] = quad::area(x);
+        batch.volume[i] = axisymmetric ? quad::axisymmetric_volume(x) : batch.area[i];
+        StrainRate rate;
+        double spin = 0.0;
+        mid_step_rates<G>(x, batch.velocities(i), params.time_step_next, rate, spin);
+        batch.rate_xx[i] = rate.xx;
+        batch.rate_yy[i] = rate.yy;
+        batch.rate_xy[i] = rate.xy;
+        batch.rate_zz[i] = rate.zz;
+        batch.spin[i] = spin;
       }
     }
-    // A damaged zone resists only volumetric compression (DESIGN.md section 2 step 6).
-    const double pressure = damaged ? std::max(eos.pressure(density, energy), 0.0) : eos.pressure(density, energy);
-    const double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure) +
-                                      (damaged ? 0.0 : 4.0 * params.shear_modulus / (3.0 * density));
-    const double sound_speed = std::sqrt(std::max(wave_speed_squared, 0.0));
 
-    zones.area[z] = area;
-    zones.volume[z] = volume;
-    zones.density[z] = density;
-    zones.specific_energy[z] = energy;
-    zones.pressure[z] = pressure;
-    zones.sound_speed[z] = sound_speed;
-    zones.volume_change[z] = std::abs(volume - old_volume) / old_volume;
-    result.internal_energy += zones.mass[z] * energy;
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      if (!zones.active[z]) continue;
+      const ZoneCorners& n = zones.corners[z];
+      const quad::Corners x = mesh.corner_positions(z);
+      const double area = has_strength ? batch.area[i] : quad::area(x);
+      const double volume = has_strength ? batch.volume[i] : axisymmetric ? quad::axisymmetric_volume(x) : area;
 
-    // Stable step: CFL with the viscous signal speed b (Wilkins), and the |dV/V| limit.
-    const double length = quad::smallest_altitude(x, area);
-    const double b = zones.viscous_speed[z];
-    const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
-    double dt = signal > 0.0 ? params.cfl * length / signal : std::numeric_limits<double>::infinity();
-    if (zones.volume_change[z] > 0.0) {
-      dt = std::min(dt, params.max_volume_change * params.time_step_next / zones.volume_change[z]);
-    }
-    zones.stable_time_step[z] = dt;
-    if (dt < result.stable_time_step) {
-      result.stable_time_step = dt;
-      result.controlling_zone = z;
+      // Compatible energy: the work of the corner forces over the step at the mid-step velocity.
+      const double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+      double work = 0.0;
+      for (int p = 0; p < 4; ++p) {
+        const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
+        const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
+        work += corner[2 * p] * ubar + corner[2 * p + 1] * vbar;
+      }
+      const double energy = zones.specific_energy[z] - params.time_step_mid * work / zones.mass[z];
+
+      if (!(area > 0.0) || !(volume > 0.0) || !std::isfinite(energy)) {
+        if (result.failed_zone < 0) result.failed_zone = z;
+        continue;
+      }
+      const double old_volume = zones.volume[z];
+      const double density = zones.mass[z] / volume;
+
+      const bool damaged = zones.damaged[z] != 0;
+      if constexpr (has_strength) {
+        if (!damaged) {  // a damaged zone keeps s = 0
+          // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
+          const StrainRate rate{batch.rate_xx[i], batch.rate_yy[i], batch.rate_xy[i], batch.rate_zz[i]};
+          const Deviator previous{zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z]};
+          PlasticState state;
+          state.plastic_strain = zones.plastic_strain[z];
+          if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
+            state.strain_rate = equivalent_strain_rate(rate);
+            state.temperature = strength.temperature_from_energy(energy);
+          }
+          const PlasticReturn plastic =
+              update_deviator(strength, previous, rate, batch.spin[i], params.time_step_next, state);
+          zones.deviator_xx[z] = plastic.deviator.xx;
+          zones.deviator_yy[z] = plastic.deviator.yy;
+          zones.deviator_xy[z] = plastic.deviator.xy;
+          zones.deviator_zz[z] = plastic.deviator.zz;
+          zones.plastic_strain[z] += plastic.plastic_strain_increment;
+          result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
+        }
+      }
+      // A damaged zone resists only volumetric compression (DESIGN.md section 2 step 6).
+      const double pressure = damaged ? std::max(eos.pressure(density, energy), 0.0) : eos.pressure(density, energy);
+      const double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure) +
+                                        (damaged ? 0.0 : 4.0 * params.shear_modulus / (3.0 * density));
+      const double sound_speed = std::sqrt(std::max(wave_speed_squared, 0.0));
+
+      zones.area[z] = area;
+      zones.volume[z] = volume;
+      zones.density[z] = density;
+      zones.specific_energy[z] = energy;
+      zones.pressure[z] = pressure;
+      zones.sound_speed[z] = sound_speed;
+      zones.volume_change[z] = std::abs(volume - old_volume) / old_volume;
+      result.internal_energy += zones.mass[z] * energy;
+
+      // Stable step: CFL with the viscous signal speed b (Wilkins), and the |dV/V| limit.
+      const double length = quad::smallest_altitude(x, area);
+      const double b = zones.viscous_speed[z];
+      const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
+      double dt = signal > 0.0 ? params.cfl * length / signal : std::numeric_limits<double>::infinity();
+      if (zones.volume_change[z] > 0.0) {
+        dt = std::min(dt, params.max_volume_change * params.time_step_next / zones.volume_change[z]);
+      }
+      zones.stable_time_step[z] = dt;
+      if (dt < result.stable_time_step) {
+        result.stable_time_step = dt;
+        result.controlling_zone = z;
+      }
     }
   }
   result.plastic_work = result_plastic_work;
