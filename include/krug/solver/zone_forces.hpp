@@ -26,6 +26,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/solver/controls.hpp"
+#include "krug/solver/corner_batch.hpp"
 
 namespace krug {
 
@@ -106,9 +107,7 @@ namespace detail {
 
 constexpr int zone_batch = 32;
 
-struct ZoneBatch {
-  double x[4][zone_batch], y[4][zone_batch];                // corner positions
-  double u[4][zone_batch], v[4][zone_batch];                // corner velocities
+struct ZoneBatch : CornerBatch<zone_batch> {
   double bx[4][zone_batch], by[4][zone_batch];              // dA/dx_p
   double area[zone_batch], mean_radius[zone_batch];         // A, V/A (RZ)
   double pressure[zone_batch];                              // p (+ q for the scalar viscosity)
@@ -119,12 +118,6 @@ struct ZoneBatch {
   double hourglass_power[zone_batch];
   double edge_compression[4][zone_batch];                   // du . dx of edge (p, p+1), < 0: compressing
 
-  quad::Corners corners(int i) const {
-    return {Vec2{x[0][i], y[0][i]}, Vec2{x[1][i], y[1][i]}, Vec2{x[2][i], y[2][i]}, Vec2{x[3][i], y[3][i]}};
-  }
-  std::array<Vec2, 4> velocities(int i) const {
-    return {Vec2{u[0][i], v[0][i]}, Vec2{u[1][i], v[1][i]}, Vec2{u[2][i], v[2][i]}, Vec2{u[3][i], v[3][i]}};
-  }
   std::array<Vec2, 4> area_gradient(int i) const {
     return {Vec2{bx[0][i], by[0][i]}, Vec2{bx[1][i], by[1][i]}, Vec2{bx[2][i], by[2][i]}, Vec2{bx[3][i], by[3][i]}};
   }
@@ -155,16 +148,7 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
   for (Index first = zone_begin; first < zone_end; first += detail::zone_batch) {
     const int count = static_cast<int>(std::min<Index>(detail::zone_batch, zone_end - first));
 
-    // Gather (inactive zones too: their values are computed and never used).
-    for (int i = 0; i < count; ++i) {
-      const ZoneCorners& n = zones.corners[first + i];
-      for (int p = 0; p < 4; ++p) {
-        batch.x[p][i] = nodes.x[n[p]];
-        batch.y[p][i] = nodes.y[n[p]];
-        batch.u[p][i] = nodes.u[n[p]];
-        batch.v[p][i] = nodes.v[n[p]];
-      }
-    }
+    batch.gather(mesh, first, count);
 
     // Geometry, and for the edge viscosity du . dx of every edge (< 0: compressing).
     for (int i = 0; i < count; ++i) {

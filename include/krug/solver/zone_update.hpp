@@ -11,6 +11,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/material/strength.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/solver/corner_batch.hpp"
 
 namespace krug {
 
@@ -68,19 +69,10 @@ namespace detail {
 // compiler vectorises (the same operations as for one zone at a time).
 constexpr int update_batch = 32;
 
-struct UpdateBatch {
-  double x[4][update_batch], y[4][update_batch];  // corner positions x^{n+1}
-  double u[4][update_batch], v[4][update_batch];  // corner velocities u^{n+1/2}
+struct UpdateBatch : CornerBatch<update_batch> {  // corner positions x^{n+1}, velocities u^{n+1/2}
   double area[update_batch], volume[update_batch];
   double rate_xx[update_batch], rate_yy[update_batch], rate_xy[update_batch], rate_zz[update_batch];
   double spin[update_batch];
-
-  quad::Corners corners(int i) const {
-    return {Vec2{x[0][i], y[0][i]}, Vec2{x[1][i], y[1][i]}, Vec2{x[2][i], y[2][i]}, Vec2{x[3][i], y[3][i]}};
-  }
-  std::array<Vec2, 4> velocities(int i) const {
-    return {Vec2{u[0][i], v[0][i]}, Vec2{u[1][i], v[1][i]}, Vec2{u[2][i], v[2][i]}, Vec2{u[3][i], v[3][i]}};
-  }
 };
 
 }  // namespace detail
@@ -105,15 +97,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
 
     // With strength, the strain rate and spin of the step (the mid-step geometry), batched.
     if constexpr (has_strength) {
-      for (int i = 0; i < count; ++i) {
-        const ZoneCorners& n = zones.corners[first + i];
-        for (int p = 0; p < 4; ++p) {
-          batch.x[p][i] = nodes.x[n[p]];
-          batch.y[p][i] = nodes.y[n[p]];
-          batch.u[p][i] = nodes.u[n[p]];
-          batch.v[p][i] = nodes.v[n[p]];
-        }
-      }
+      batch.gather(mesh, first, count);
       for (int i = 0; i < count; ++i) {
         const quad::Corners x = batch.corners(i);
         batch.area[i] = quad::area(x);
