@@ -10,7 +10,6 @@ namespace krug::detail {
 
 template <int Size>
 struct CornerBatch {
-  static constexpr int size = Size;
   double x[4][Size], y[4][Size];  // corner positions
   double u[4][Size], v[4][Size];  // corner velocities
 
