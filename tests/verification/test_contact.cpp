@@ -350,20 +350,18 @@ TEST_CASE("Contact patch test: an unloaded stack at rest stays at rest and the c
   CHECK(largest_stress < 1.0);
 }
 
-TEST_CASE("Contact patch test: a pre-stressed stack between fixed walls stays at rest", "[contact][patch][!mayfail]") {
-  // Both blocks at rho = rho0 (1 + p0/K): pressure p0 = 50 MPa with the linear EOS, no deviator. All
-  // four sides held normally (the outer side too), so the hydrostatic state is an exact equilibrium in
-  // which the contact alone holds the blocks apart (without it each face would spring into the other at
-  // p0 / (rho0 c_L) = 2.8 m/s). Judged: velocities at round-off (below 1e-9 of that speed), no drift
-  // (nodes within 1e-9 of a zone of where they started), the contact carrying p0 x area at every step
-  // (within 1e-9), over 20 transits of the stack (62 us, 640 steps).
-  // Known failure (docs/verification.md, Contact, C1 and C2). Measured: non-matching meshes, fastest node
-  // 0.19 (planar) / 0.39 (RZ) of 2.8 m/s and the contact force 16 % over p0 x area (C1: one sweep that
-  // over-pushes and stops); matching meshes, 5.3e-4 / 6.2e-4 and 7e-6 / 8e-6 (C2: each update takes the
-  // normal of the segment as the previous updates left it, so reactions along slightly rotated normals
-  // leave tangential impulses, 1.5e-4 m/s in the first step, that a frictionless contact should not give).
-  const GeometryKind geometry = GENERATE(GeometryKind::planar, GeometryKind::axisymmetric);
-  const int upper_across = GENERATE(8, 5);
+namespace {
+
+// Both blocks at rho = rho0 (1 + p0/K): pressure p0 = 50 MPa with the linear EOS, no deviator. All four
+// sides held normally (the outer side too), so the hydrostatic state is an exact equilibrium in which
+// the contact alone holds the blocks apart (without it each face would spring into the other at
+// p0 / (rho0 c_L) = 2.8 m/s). Judged: velocities at round-off (below 1e-9 of that speed), no drift
+// (nodes within 1e-9 of a zone of where they started), the contact carrying p0 x area at every step
+// (within 1e-9), over 20 transits of the stack (62 us, 640 steps). The solve is converged (gap
+// tolerance 1e-12): the test judges the discretisation, not the solver's tolerance (with the default
+// 1e-5 the matching stacks keep 5.3e-4 of the release speed along the interface, docs/verification.md,
+// Contact, C2).
+void check_prestressed_stack(GeometryKind geometry, int upper_across) {
   Stack stack = make_stack(geometry, upper_across);
   const double p0 = 5.0e7;
   for (Index z = 0; z < stack.setup.mesh.zones.size(); ++z) stack.setup.mesh.zones.density[z] = rho0 * (1.0 + p0 / bulk);
@@ -371,8 +369,10 @@ TEST_CASE("Contact patch test: a pre-stressed stack between fixed walls stays at
     if (std::abs(stack.setup.mesh.nodes.y[p] - stack_width) < 1e-12) stack.setup.constraints.push_back({p, false, true});
   }
   stack.setup.controls.end_time = 20.0 * 2.0 * stack_length / longitudinal_speed;
+  stack.setup.contact.controls.gap_tolerance = 1e-12;
   Simulation sim(stack.setup);
   double fastest = 0.0, drift = 0.0, worst_force = 0.0;
+  int most_sweeps = 0;
   const double area = geometry == GeometryKind::planar ? stack_width : 0.5 * stack_width * stack_width;
   while (!sim.finished()) {
     sim.step();
@@ -382,18 +382,37 @@ TEST_CASE("Contact patch test: a pre-stressed stack between fixed walls stays at
       drift = std::max(drift, norm(mesh.nodes.position(p) - Vec2{mesh.nodes.x0[p], mesh.nodes.y0[p]}));
     }
     worst_force = std::max(worst_force, std::abs(sim.last_contact().total_normal / (p0 * area) - 1.0));
+    most_sweeps = std::max(most_sweeps, sim.last_contact().sweeps);
   }
   const double release_speed = p0 / (rho0 * longitudinal_speed);
   const double zone = stack_width / lower_across;
   const std::string name = "Contact stack at rest, pre-stressed, " + stack_name(geometry, upper_across);
   INFO(name << ": fastest node " << fastest << " m/s (release speed " << release_speed << "); drift " << drift
-            << " m; contact force off p0 x area by " << worst_force << "; cycles " << sim.cycle());
+            << " m; contact force off p0 x area by " << worst_force << "; most sweeps " << most_sweeps << "; cycles "
+            << sim.cycle());
   report(name, "fastest node / (p0 / rho0 c_L); largest drift / zone", "< 1e-9", fastest / release_speed,
          format_number("%.1e", drift / zone), sim.mesh().zones.size(), 0.0);
   report(name, "contact force / (p0 x area) - 1, worst step", "< 1e-9", worst_force, "-", sim.mesh().zones.size(), 0.0);
   CHECK(fastest < 1e-9 * release_speed);
   CHECK(drift < 1e-9 * zone);
   CHECK(worst_force < 1e-9);
+}
+
+}  // namespace
+
+TEST_CASE("Contact patch test: a pre-stressed stack stays at rest, matching meshes", "[contact][patch]") {
+  // Each reaction acts along the normal and at the xi of its last update, and a pushing contact whose
+  // reaction the later updates have turned off its normal is not converged (C2 fixed). Measured:
+  // fastest node 1.4e-11 (planar) / 2.9e-11 (RZ) of the release speed, drift 1e-17 m, the contact
+  // force within 8e-12 of p0 x area, 4 sweeps per step.
+  check_prestressed_stack(GENERATE(GeometryKind::planar, GeometryKind::axisymmetric), 8);
+}
+
+TEST_CASE("Contact patch test: a pre-stressed stack stays at rest, non-matching meshes", "[contact][patch][!mayfail]") {
+  // Known failure (docs/verification.md, Contact, C2): the Gauss-Seidel sweeps over the two-way
+  // constraints of non-matching faces stall near 1e-6 of a segment length and every step ends at the
+  // 50-sweep limit. Measured: fastest node 0.017 (planar) / 0.041 (RZ) of the release speed.
+  check_prestressed_stack(GENERATE(GeometryKind::planar, GeometryKind::axisymmetric), 5);
 }
 
 // ---- 2. friction ---------------------------------------------------------------------------------

@@ -171,8 +171,10 @@ TEST_CASE("E8 particles in a closed box swept by a moving wall: no pass-through,
   CHECK(sim.particles().size() == block_zones);
   CHECK(converted_at > 0.0);
   CHECK(work > 0.0);
-  // No pass-through beyond 1e-3 of a radius (the brief). Measured: particle-particle 1.7e-4,
-  // moving wall 9.0e-5, box walls 1e-14; deepest_contact_gap -1.6e-8 m = 6.4e-5 of a radius. (Before
+  // No pass-through beyond 1e-3 of a radius (the brief). Measured: particle-particle 1.0e-4,
+  // moving wall 1.1e-4, box walls 1e-14; deepest_contact_gap -1.5e-8 m = 6e-5 of a radius. (A search
+  // that missed pairs the solve brought together left 6.4e-4 to 1.2e-3 between particles,
+  // docs/verification.md, Contact, C2. Before
   // the projected Gauss-Seidel sweeps were made to iterate, src/contact/contact.cpp, every solve stopped
   // after one sweep, and this case left overlaps of 1.6e-2 of a radius between particles and 9.3e-3
   // against the moving wall.)

@@ -98,7 +98,16 @@ class ContactSolver {
     double length = 0.0;   // segment length (m), for tolerances
     double normal = 0.0;   // accumulated normal reaction (N per radian or per m)
     double tangent = 0.0;  // accumulated tangential reaction
+    // Gauss-Seidel, node-segment candidates: where the accumulated reaction now acts. Each update
+    // withdraws it and applies the new total along the current normal at the current xi, so the
+    // candidate's impulse is always normal x n + tangent x t of one geometry (a frictionless contact
+    // gives no tangential impulse). The other kinds (particles) add each change along the current
+    // normal: re-applying their whole reactions gave energy in a run with erosion particles
+    // (docs/verification.md, Contact, C2).
+    Vec2 applied_normal{0.0, 0.0};
+    double applied_xi = 0.0;
   };
+  static bool reoriented(const Candidate& c) { return c.kind == Kind::node_segment; }
 
   struct Geometry {
     Vec2 normal, tangent;
@@ -118,6 +127,9 @@ class ContactSolver {
   double update(Candidate& c, double dt_mid, double dt_next);
   double overlap_target(double start_gap, double dt_next) const;
   void apply(Index point, Vec2 direction, double force, double dt_mid);
+  // The reaction normal x n + tangent x t at xi: on the point, and shared by the segment's ends.
+  void apply_reaction(const Candidate& c, Vec2 normal, double xi, double normal_force, double tangent_force,
+                      double dt_mid);
   Vec2 position(Index point) const;
   Vec2 velocity(Index point) const;
   Vec2 predicted(Index point, double dt) const;
