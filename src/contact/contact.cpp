@@ -24,6 +24,8 @@ ContactSolver::ContactSolver(ContactSetup setup, const Mesh& mesh,
                              const std::vector<std::pair<Index, Index>>& body_zone_ranges)
     : setup_(std::move(setup)), zone_ranges_(body_zone_ranges) {
   reaction_x_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
+  overlap_x_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
+  overlap_y_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
   reaction_y_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
   touched_flag_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0);
   rebuild_boundaries(mesh);
@@ -67,6 +69,13 @@ Vec2 ContactSolver::reaction_force(Index point) const {
   }
   return {reaction_x_[point], reaction_y_[point]};
 }
+Vec2 ContactSolver::overlap_reaction_force(Index point) const {
+  if (is_particle(point)) {
+    const Index i = particle_of(point);
+    return {particle_overlap_x_[i], particle_overlap_y_[i]};
+  }
+  return {overlap_x_[point], overlap_y_[point]};
+}
 
 void ContactSolver::touch(Index point, Vec2 force) {
   if (is_particle(point)) {
@@ -74,11 +83,19 @@ void ContactSolver::touch(Index point, Vec2 force) {
     if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) touched_.push_back(point);
     particle_reaction_x_[i] += force.x;
     particle_reaction_y_[i] += force.y;
+    if (overlapping_) {
+      particle_overlap_x_[i] += force.x;
+      particle_overlap_y_[i] += force.y;
+    }
     if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) particle_reaction_x_[i] = 1e-300;
     return;
   }
   reaction_x_[point] += force.x;
   reaction_y_[point] += force.y;
+  if (overlapping_) {
+    overlap_x_[point] += force.x;
+    overlap_y_[point] += force.y;
+  }
   if (!touched_flag_[point]) {
     touched_flag_[point] = 1;
     touched_.push_back(point);
@@ -360,6 +377,7 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
       tangent_total = clamp_friction(c.tangent, -slip / (dt_mid * wt), c.friction * total);
     }
   }
+  overlapping_ = g.start_gap < 0.0;
   if (reoriented(c)) {
     // Withdraw the reaction where it acted, and apply the new totals in the current geometry.
     apply_reaction(c, c.applied_normal, c.applied_xi, -c.normal, -c.tangent, dt_mid);
@@ -380,10 +398,13 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
   for (Index p : touched_) {
     if (is_particle(p)) continue;
     reaction_x_[p] = reaction_y_[p] = 0.0;
+    overlap_x_[p] = overlap_y_[p] = 0.0;
     touched_flag_[p] = 0;
   }
   touched_.clear();
   particle_reaction_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
+  particle_overlap_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
+  particle_overlap_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   particle_reaction_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   ContactStatistics stats;
   find_candidates(dt_next);
@@ -415,6 +436,7 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
       const Candidate& c = candidates_[k];
       const Geometry& g = geometry[k];
+      overlapping_ = g.start_gap < 0.0;
       apply(c.node, g.normal, c.normal, dt_mid);
       apply(c.a, g.normal, -(1.0 - g.xi) * c.normal, dt_mid);
       apply(c.b, g.normal, -g.xi * c.normal, dt_mid);
@@ -479,16 +501,11 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
       if (worst <= setup_.controls.gap_tolerance) worst = full_check();
     }
   }
+  overlapping_ = false;
   for (const Candidate& c : candidates_) {
     if (c.normal > 0.0) ++stats.active;
     stats.total_normal += c.normal;
     const Geometry g = contact_geometry(c, dt_next);
-    if (g.start_gap < 0.0 && c.normal > 0.0) {
-      // The part of R that opens the overlap (removal / (dt^n dt^{n+1/2} w)) and the kinetic energy it gives.
-      const double w = contact_inverse_mass(g.normal, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
-      const double opening = std::min(c.normal, (overlap_target(g.start_gap, dt_next) - g.start_gap) / (dt_mid * dt_next * w));
-      stats.overlap_work += 0.5 * dt_mid * dt_mid * w * opening * opening;
-    }
     if (!g.valid) continue;
     stats.deepest_gap = std::min(stats.deepest_gap, g.gap - std::min(g.start_gap, 0.0));
   }

@@ -184,7 +184,8 @@ std::string RunRecorder::history_header(const Simulation& simulation) {
   for (const Body& body : simulation.bodies()) {
     header += fmt::format(",{0}_v{1},{0}_v{2},{0}_{1},{0}_{2}", body.name, a0, a1);
   }
-  return header + ",kinetic,internal,plastic,viscous,hourglass,contact,converted,boundary,total,relative_drift,particles\n";
+  return header + ",kinetic,internal,plastic,viscous,hourglass,contact,contact_overlap,converted,boundary,total,relative_drift,"
+                  "particles\n";
 }
 
 void RunRecorder::append_history(const std::string& text) {
@@ -206,9 +207,9 @@ void RunRecorder::write_history_row(const Simulation& simulation) {
     const BodySummary b = simulation.summarise(body);
     row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e}", b.velocity.x, b.velocity.y, b.centroid.x, b.centroid.y);
   }
-  row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
+  row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
                      whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
-                     whole * e.hourglass, whole * e.contact, whole * e.converted, whole * e.boundary,
+                     whole * e.hourglass, whole * e.contact, whole * e.overlap, whole * e.converted, whole * e.boundary,
                      whole * e.total(), simulation.ledger().relative_energy_drift(), simulation.particles().size());
   append_history(row);
 }

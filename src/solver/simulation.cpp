@@ -311,25 +311,29 @@ void Simulation::solve_contact_reactions() {
     topology_changed_ = false;
   }
   last_contact_ = contact_.solve(mesh_, particles_, dt_mid, time_step_next_);
-  ledger_.energy.overlap += last_contact_.overlap_work;
   deepest_contact_gap_ = std::min(deepest_contact_gap_, last_contact_.deepest_gap);
 }
 
 void Simulation::book_contact_work(double dt_mid) {
   // W_contact = sum dt^n R . ubar over the nodes that received a reaction; on a held DOF the
-  // boundary cancels R, doing -R u dt (and taking the axial impulse).
+  // boundary cancels R, doing -R u dt (and taking the axial impulse). The overlap line is the part of
+  // it done by the contacts that carry a pre-existing overlap (DESIGN.md section 3): the rest, the work
+  // of contacts that started the step apart, is dissipative.
   const NodeFields& nodes = mesh_.nodes;
   for (Index p : contact_.touched_points()) {
     const Vec2 r = contact_.reaction_force(p);
     if (contact::ContactSolver::is_particle(p)) {
       const Index i = contact::ContactSolver::particle_of(p);
-      ledger_.energy.contact += dt_mid * (r.x * 0.5 * (particles_.u_old[i] + particles_.u[i]) +
-                                          r.y * 0.5 * (particles_.v_old[i] + particles_.v[i]));
+      const Vec2 ubar{0.5 * (particles_.u_old[i] + particles_.u[i]), 0.5 * (particles_.v_old[i] + particles_.v[i])};
+      ledger_.energy.contact += dt_mid * dot(r, ubar);
+      ledger_.energy.overlap += dt_mid * dot(contact_.overlap_reaction_force(p), ubar);
       continue;
     }
     const double ubar = 0.5 * (nodes.u_old[p] + nodes.u[p]);
     const double vbar = 0.5 * (nodes.v_old[p] + nodes.v[p]);
     ledger_.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
+    const Vec2 overlap = contact_.overlap_reaction_force(p);
+    ledger_.energy.overlap += dt_mid * (overlap.x * ubar + overlap.y * vbar);
     if (held_x_[static_cast<std::size_t>(p)]) {
       ledger_.energy.boundary -= dt_mid * r.x * nodes.u[p];
       ledger_.axial_boundary_impulse -= dt_mid * r.x;

@@ -55,7 +55,6 @@ struct ContactStatistics {
   int sweeps = 0;
   double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
   double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)
-  double overlap_work = 0.0;     // estimated work of removing pre-existing overlap this step (J per radian or per m)
 };
 
 // Per-body boundary description, rebuilt when the topology changes.
@@ -82,6 +81,9 @@ class ContactSolver {
   static constexpr Index particle_of(Index point) { return -2 - point; }
   const std::vector<Index>& touched_points() const { return touched_; }
   Vec2 reaction_force(Index point) const;
+  // The part of reaction_force(point) applied by contacts that carry a pre-existing overlap (a start gap
+  // < 0, driven open by the overlap rule): its work is the ledger's overlap line.
+  Vec2 overlap_reaction_force(Index point) const;
   const ContactSetup& setup() const { return setup_; }
 
  private:
@@ -140,6 +142,8 @@ class ContactSolver {
   Mesh* mesh_ = nullptr;
   Particles* particles_ = nullptr;
   std::vector<double> particle_reaction_x_, particle_reaction_y_;
+  std::vector<double> particle_overlap_x_, particle_overlap_y_;
+  bool overlapping_ = false;  // the reaction being applied is that of a contact with a pre-existing overlap
 
   ContactSetup setup_;
   std::vector<std::pair<Index, Index>> zone_ranges_;
@@ -149,6 +153,7 @@ class ContactSolver {
   std::vector<Box> boxes_;
   UniformGrid grid_;
   std::vector<double> reaction_x_, reaction_y_;
+  std::vector<double> overlap_x_, overlap_y_;
   std::vector<Index> touched_;
   std::vector<std::uint8_t> touched_flag_;
 };

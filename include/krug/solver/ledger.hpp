@@ -4,8 +4,10 @@
 //
 //   E_total = K + IE + E_converted - W_contact - W_boundary
 //
-// W_contact <= 0 is the work of contact and friction forces on the system, W_boundary the work done
-// on the system by boundary conditions. Plastic, viscous and hourglass work are parts of IE.
+// W_contact is the work of contact and friction forces on the system, W_boundary the work done on
+// the system by boundary conditions. Plastic, viscous and hourglass work are parts of IE. The overlap
+// line is the part of W_contact done by contacts that carry a pre-existing overlap (pushed open by the
+// overlap rule, so it may be positive); the rest, W_contact - overlap, is <= 0.
 #include <algorithm>
 #include <cmath>
 
@@ -17,8 +19,8 @@ struct EnergyLedger {
   double plastic = 0.0;     // plastic work (part of IE)
   double viscous = 0.0;     // artificial-viscosity work (part of IE)
   double hourglass = 0.0;   // hourglass work (part of IE)
-  double contact = 0.0;     // W_contact (<= 0 apart from booked overlap work)
-  double overlap = 0.0;     // estimated part of W_contact that removed pre-existing overlap (>= 0)
+  double contact = 0.0;     // W_contact: <= 0 apart from the overlap line
+  double overlap = 0.0;     // the part of W_contact done by contacts with a pre-existing overlap (any sign)
   double converted = 0.0;   // energy removed with zones converted to particles
   double boundary = 0.0;    // W_boundary, work done on the system by boundary conditions
 
@@ -35,9 +37,13 @@ struct Ledger {
   double axial_momentum = 0.0;
   double axial_boundary_impulse = 0.0;  // impulse of boundary conditions on the system, axial
 
-  // |E(t) - E(0)| / max(E(0), max_t K, |W_boundary|): defined also for runs that start at rest.
+  // max(E(0), max_t K, |W_boundary|): the energy the drift is relative to.
+  double energy_scale() const {
+    return std::max({std::abs(initial_total_energy), max_kinetic, std::abs(energy.boundary)});
+  }
+  // |E(t) - E(0)| / energy_scale(): defined also for runs that start at rest.
   double relative_energy_drift() const {
-    const double scale = std::max({std::abs(initial_total_energy), max_kinetic, std::abs(energy.boundary)});
+    const double scale = energy_scale();
     return scale > 0.0 ? std::abs(energy.total() - initial_total_energy) / scale : 0.0;
   }
   double relative_mass_error() const {
