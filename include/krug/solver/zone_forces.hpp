@@ -13,8 +13,10 @@
 //
 // Artificial viscosity, edge form (Caramana, Shashkov & Whalen 1998): on each compressing edge
 // (du . dx < 0) the damper force kappa du acts between its nodes,
-//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| (x r_S in RZ),
-// S the median-mesh segment from the zone centre to the edge midpoint; psi the limiter built from the
+//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| |cos| (x r_S in RZ),
+// S the median-mesh segment from the zone centre to the edge midpoint, cos the cosine between du and
+// the normal of S (a velocity difference along S, a shear across the edge, gets no viscosity: without
+// this factor Saltzman's skewed grid tangled, docs/verification.md F5); psi the limiter built from the
 // velocity gradients of the continuing edges (psi = 1 for a velocity field linear along the edge), so
 // the viscosity stays off in uniform compression. The damper only dissipates: power = -kappa |du|^2.
 //
@@ -272,9 +274,10 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
                                  : 0.0;
           const double active = 1.0 - psi;
           if (!(active > 0.0)) continue;
-          const Vec2 midpoint = 0.5 * (x[k] + x[k1]);
-          double face = norm(midpoint - centre);
-          if (axisymmetric && !area_weighted) face *= 0.5 * (midpoint.y + centre.y);
+          const Vec2 median = 0.5 * (x[k] + x[k1]) - centre;  // S, from the zone centre to the edge midpoint
+          // |S| x |cos(du, n_S)|: the damper acts on the part of du across the median segment (CSW98).
+          double face = std::abs(du.y * median.x - du.x * median.y) / du_norm;
+          if (axisymmetric && !area_weighted) face *= centre.y + 0.5 * median.y;
           const double quadratic = cq_s * du_norm;
           const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
           const double kappa = q_over_du * face;  // force per unit velocity difference
