@@ -160,16 +160,17 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
 
 // The mesh study (docs/validation.md, "Mesh"; scripts/paper_study.py, group mesh): dU/U0 of the
 // bullet body at 5, 7 and 10 zones per mm. Band: their mean plus or minus their spread (max - min).
-//   monolithic 0.2085 0.2519 0.2544   mean 0.2382  spread 0.0459
-//   layered    0.2447 0.2074 0.1910   mean 0.2143  spread 0.0537
-//   spaced     0.1773 0.1746 0.1622   mean 0.1714  spread 0.0152
+//   monolithic 0.2277 0.2301 0.2491   mean 0.2356  spread 0.0214
+//   layered    0.2271 0.2196 0.1923   mean 0.2130  spread 0.0348
+//   spaced     0.1752 0.1771 0.1628   mean 0.1717  spread 0.0143
 // Orderings asserted: only those that hold at every level with gaps above the spreads, spaced below
-// monolithic (gaps 0.031, 0.077, 0.092) and spaced below layered (0.067, 0.033, 0.029): the loss of
-// each lies above the whole spaced band. Monolithic against layered changes sign with the mesh.
+// monolithic (gaps 0.052, 0.053, 0.086) and spaced below layered (0.052, 0.043, 0.030): the loss of
+// each lies above the whole spaced band. Monolithic is ahead of layered at every level too, but at
+// 5 zones per mm by 0.0006 only, far inside the spreads: not asserted.
 TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("monolithic_3mm_2.6g_z5.json");
-  check_common(run, "paper: monolithic 3 mm", 0.2382, 0.0459);
-  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1714 + 0.0152);
+  check_common(run, "paper: monolithic 3 mm", 0.2356, 0.0214);
+  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1717 + 0.0143);
   // The paper: "a plug somewhat thinner than the plate forms". The plate leaves at least two pieces,
   // and its fast zones on the axis span less than the 3 mm plate but more than half of it.
   CHECK(run.fragments.at(0) >= 2);
@@ -182,8 +183,8 @@ TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones
 
 TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("layered_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: layered 3 x 1 mm", 0.2143, 0.0537);
-  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1714 + 0.0152);
+  check_common(run, "paper: layered 3 x 1 mm", 0.2130, 0.0348);
+  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1717 + 0.0143);
   // The paper: "the front layer fractures first, the rear layers bend strongly and separate, and their
   // fracture starts on the axis". Damage in order front to rear; in the two rear plates the first
   // damage of the plate lies under the bullet (within its radius, as for the monolithic plate).
@@ -205,7 +206,7 @@ TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zo
 
 TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: spaced 3 x 1 mm", 0.1714, 0.0152);
+  check_common(run, "paper: spaced 3 x 1 mm", 0.1717, 0.0143);
   // The paper: "plugging of each plate in turn". Damage in order, and every plate in pieces.
   REQUIRE(run.first_damage.size() == 3);
   CHECK(run.first_damage[0].time < run.first_damage[1].time);
