@@ -3,7 +3,7 @@
 
 usage: plot_history.py DIR/history.csv OUTDIR
 
-Writes OUTDIR/energy.png (the energy ledger: kinetic, internal, contact, converted, boundary,
+Writes OUTDIR/energy.png (the energy ledger: kinetic, internal, contact, contact_overlap, converted, boundary,
 total), OUTDIR/velocity.png (each body's mass-weighted velocity, both components),
 OUTDIR/time_step.png and OUTDIR/energy_drift.png. Needs matplotlib (Debian: python3-matplotlib);
 exits with code 3 when it is missing, 2 on a bad file, so the caller can say why.
@@ -71,7 +71,7 @@ def main(argv):
         plt.close(fig)
 
     energy = [(name, columns[name], "-") for name in
-              ("kinetic", "internal", "contact", "converted", "boundary") if name in columns]
+              ("kinetic", "internal", "contact", "contact_overlap", "converted", "boundary") if name in columns]
     if "total" in columns:
         energy.append(("total", columns["total"], "k--"))
     figure("energy.png", "Energy ledger", energy, "energy (J)")
