@@ -24,9 +24,9 @@ ContactSolver::ContactSolver(ContactSetup setup, const Mesh& mesh,
                              const std::vector<std::pair<Index, Index>>& body_zone_ranges)
     : setup_(std::move(setup)), zone_ranges_(body_zone_ranges) {
   reaction_x_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
+  reaction_y_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
   overlap_x_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
   overlap_y_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
-  reaction_y_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0.0);
   touched_flag_.assign(static_cast<std::size_t>(mesh.nodes.size()), 0);
   rebuild_boundaries(mesh);
 }
@@ -340,6 +340,15 @@ double ContactSolver::overlap_target(double start_gap, double dt_next) const {
   return start_gap + removal;
 }
 
+double ContactSolver::friction_total(const Candidate& c, const Geometry& g, double accumulated, double normal_total,
+                                     double dt_mid) const {
+  if (c.friction <= 0.0) return accumulated;
+  const double wt = contact_inverse_mass(g.tangent, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
+  if (wt <= 0.0) return accumulated;
+  const double slip = dot(relative_velocity(c, g.xi), g.tangent);
+  return clamp_friction(accumulated, -slip / (dt_mid * wt), c.friction * normal_total);
+}
+
 Vec2 ContactSolver::relative_velocity(const Candidate& c, double xi) const {
   Vec2 relative = velocity(c.node);
   if (c.a != -1) relative -= (1.0 - xi) * velocity(c.a);
@@ -369,14 +378,7 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   const double change = total - c.normal;
   const double gap_after = g.gap + dt_mid * dt_next * w * change;
 
-  double tangent_total = c.tangent;
-  if (c.friction > 0.0) {
-    const double wt = contact_inverse_mass(g.tangent, g.xi, w_point, w_a, w_b);
-    if (wt > 0.0) {
-      const double slip = dot(relative_velocity(c, g.xi), g.tangent);
-      tangent_total = clamp_friction(c.tangent, -slip / (dt_mid * wt), c.friction * total);
-    }
-  }
+  const double tangent_total = friction_total(c, g, c.tangent, total, dt_mid);
   overlapping_ = g.start_gap < 0.0;
   if (reoriented(c)) {
     // Withdraw the reaction where it acted, and apply the new totals in the current geometry.
@@ -403,9 +405,9 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
   }
   touched_.clear();
   particle_reaction_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
+  particle_reaction_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   particle_overlap_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   particle_overlap_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
-  particle_reaction_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
   ContactStatistics stats;
   find_candidates(dt_next);
   stats.candidates = static_cast<long>(candidates_.size());
@@ -425,25 +427,12 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     // Coulomb friction from the same predicted state: the tangential reaction that stops the predicted
     // slip, within f R of the contact's own normal reaction.
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
-      Candidate& c = candidates_[k];
-      c.tangent = 0.0;
-      if (c.friction <= 0.0 || c.normal <= 0.0) continue;
-      const Geometry& g = geometry[k];
-      const double wt = contact_inverse_mass(g.tangent, g.xi, inverse_mass(c.node), inverse_mass(c.a), inverse_mass(c.b));
-      if (wt <= 0.0) continue;
-      c.tangent = clamp_friction(0.0, -dot(relative_velocity(c, g.xi), g.tangent) / (dt_mid * wt), c.friction * c.normal);
+      candidates_[k].tangent = friction_total(candidates_[k], geometry[k], 0.0, candidates_[k].normal, dt_mid);
     }
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
       const Candidate& c = candidates_[k];
-      const Geometry& g = geometry[k];
-      overlapping_ = g.start_gap < 0.0;
-      apply(c.node, g.normal, c.normal, dt_mid);
-      apply(c.a, g.normal, -(1.0 - g.xi) * c.normal, dt_mid);
-      apply(c.b, g.normal, -g.xi * c.normal, dt_mid);
-      if (c.tangent == 0.0) continue;
-      apply(c.node, g.tangent, c.tangent, dt_mid);
-      apply(c.a, g.tangent, -(1.0 - g.xi) * c.tangent, dt_mid);
-      apply(c.b, g.tangent, -g.xi * c.tangent, dt_mid);
+      overlapping_ = geometry[k].start_gap < 0.0;
+      apply_reaction(c, geometry[k].normal, geometry[k].xi, c.normal, c.tangent, dt_mid);
     }
     stats.sweeps = 1;
   } else {

@@ -123,6 +123,10 @@ class ContactSolver {
                                    double weight, bool self, double dt_next);
   void add_particle_candidates(double dt_next);
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
+  // Coulomb: the tangential reaction that stops the slip at xi, from `accumulated`, within f x
+  // normal_total (unchanged without friction).
+  double friction_total(const Candidate& c, const Geometry& g, double accumulated, double normal_total,
+                        double dt_mid) const;
   // Velocity of the contact's point relative to the other side at xi (a wall stands still).
   Vec2 relative_velocity(const Candidate& c, double xi) const;
   // Returns the gap after this update (for the convergence check).
