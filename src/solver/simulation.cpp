@@ -69,7 +69,6 @@ void Simulation::initialise() {
   if (!(controls_.end_time > 0.0)) throw InputError("end_time must be positive");
 
   // Zone geometry and mass; nodal mass from the r-weighted corner volumes of the median mesh.
-  std::vector<double> area_mass(static_cast<std::size_t>(nodes.size()), 0.0);
   std::fill(nodes.mass.begin(), nodes.mass.end(), 0.0);
   for (const Body& body : bodies_) {
     const Material& material = materials_.at(static_cast<std::size_t>(body.material));
@@ -96,14 +95,7 @@ void Simulation::initialise() {
         const double corner_volume = axisymmetric ? axisymmetric_corners[p] : quad::area(region);
         zones.corner_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)] = zones.density[z] * corner_volume;
         nodes.mass[n[p]] += zones.density[z] * corner_volume;
-        area_mass[static_cast<std::size_t>(n[p])] += zones.density[z] * 0.25 * area;
       }
-    }
-  }
-  if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
-    area_weighted_scale_.resize(area_mass.size());
-    for (std::size_t p = 0; p < area_mass.size(); ++p) {
-      area_weighted_scale_[p] = area_mass[p] > 0.0 ? nodes.mass[static_cast<Index>(p)] / area_mass[p] : 0.0;
     }
   }
 
@@ -259,9 +251,36 @@ void Simulation::cap_next_time_step(double dt) {
   time_step_next_ = std::min(time_step_next_, dt);
 }
 
+void Simulation::update_area_weighted_scale() {
+  // Wilkins' area mass of a node, M^A_p = sum over its zones of rho_z A_z / 4 at the current
+  // positions: rho A = m / (V / A) changes as the zone moves off or towards the axis, so s_p = M_p / M^A_p
+  // is renewed every step (held at its initial value, it let a converging sphere accelerate as if its
+  // area mass had not grown: the spherical Noh stalled at a quarter of its density).
+  const NodeFields& nodes = mesh_.nodes;
+  const ZoneFields& zones = mesh_.zones;
+  area_weighted_scale_.assign(static_cast<std::size_t>(nodes.size()), 0.0);
+  for (const Body& body : bodies_) {
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      if (!zones.active[z]) continue;
+      const quad::Corners x = mesh_.corner_positions(z);
+      const double area = quad::area(x);
+      const double volume = quad::axisymmetric_volume(x);
+      const double corner_area_mass = 0.25 * zones.mass[z] * area / volume;
+      for (const Index n : zones.corners[z]) area_weighted_scale_[static_cast<std::size_t>(n)] += corner_area_mass;
+    }
+  }
+  for (std::size_t p = 0; p < area_weighted_scale_.size(); ++p) {
+    const double area_mass = area_weighted_scale_[p];
+    area_weighted_scale_[p] = area_mass > 0.0 ? nodes.mass[static_cast<Index>(p)] / area_mass : 0.0;
+  }
+}
+
 void Simulation::compute_forces() {
   std::fill(mesh_.nodes.force_x.begin(), mesh_.nodes.force_x.end(), 0.0);
   std::fill(mesh_.nodes.force_y.begin(), mesh_.nodes.force_y.end(), 0.0);
+  if (geometry_ == GeometryKind::axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
+    update_area_weighted_scale();
+  }
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];

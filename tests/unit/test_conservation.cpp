@@ -2,6 +2,9 @@
 // the compatible corner forces conserve mass, axial momentum and total energy to round-off.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <vector>
+
 #include "krug/krug.hpp"
 
 using namespace krug;
@@ -36,15 +39,31 @@ TEST_CASE("Sod-like strip conserves mass and total energy to round-off", "[conse
                                          std::pair{GeometryKind::axisymmetric, AxisymmetricForm::area_weighted});
   Simulation sim = gas_strip(geometry, 60, 4, form);
   while (!sim.finished()) sim.step();
+  CHECK(sim.ledger().relative_mass_error() < 1e-14);
+  // The area-weighted RZ form is only approximately conservative (DESIGN.md section 2 step 1): its
+  // accelerations are Wilkins' and its internal energy is each zone's own p dV, so the books do not
+  // close exactly; that form is checked in the next test case.
+  if (form == AxisymmetricForm::area_weighted) return;
   // Compatible scheme: energy exact up to accumulated round-off (~1e-16 per operation, 1e2-1e3 steps).
   CHECK(sim.ledger().relative_energy_drift() < 1e-12);
-  CHECK(sim.ledger().relative_mass_error() < 1e-14);
-  // Walls at both ends: the axial momentum changes only by the walls' impulse. Not for the
-  // area-weighted RZ form: scaling a zone's corner forces by s_p = M_p/M^A_p breaks their zero sum
-  // (DESIGN.md section 2 step 1; measured 1e-3 relative on this strip), so it is checked only for
-  // the compatible forms.
-  if (form == AxisymmetricForm::area_weighted) return;
+  // Walls at both ends: the axial momentum changes only by the walls' impulse.
   const double scale = sim.ledger().max_kinetic > 0 ? std::sqrt(2.0 * sim.ledger().max_kinetic * sim.ledger().mass) : 1.0;
   CHECK(std::abs(sim.ledger().axial_momentum - sim.ledger().initial_axial_momentum -
                  sim.ledger().axial_boundary_impulse) < 1e-12 * scale);
+}
+
+TEST_CASE("Area-weighted RZ form: its energy error converges away with the mesh", "[conservation]") {
+  // The area-weighted accelerations and the control-volume work differ by O(dr) per zone where the flow
+  // is not axial (here the free outer surface). Measured drift at 60 x 4, 120 x 8, 240 x 16: 4.2e-2,
+  // 1.3e-2, 3.8e-3 (orders 1.6 and 1.8). Asserted: at least first order at each refinement, so a
+  // drift that stopped shrinking (an inconsistency, not a discretisation error) fails.
+  std::vector<double> drift;
+  for (int refinement : {1, 2, 4}) {
+    Simulation sim = gas_strip(GeometryKind::axisymmetric, 60 * refinement, 4 * refinement, AxisymmetricForm::area_weighted);
+    while (!sim.finished()) sim.step();
+    drift.push_back(sim.ledger().relative_energy_drift());
+  }
+  INFO("drift " << drift[0] << ", " << drift[1] << ", " << drift[2]);
+  CHECK(std::log2(drift[0] / drift[1]) > 1.0);
+  CHECK(std::log2(drift[1] / drift[2]) > 1.0);
 }

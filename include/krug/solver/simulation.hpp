@@ -138,6 +138,7 @@ class Simulation {
  private:
   // The recipe, in order.
   void compute_forces();          // 1. F^n: corner forces of every zone
+  void update_area_weighted_scale();  // s_p = M_p / M^A_p at the current positions (area-weighted RZ)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from predicted gaps (no contact pairs yet)
   void correct_and_move();        // 4. u^{n+1/2} = u* + dt^n R / M, x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
@@ -172,7 +173,7 @@ class Simulation {
   double deepest_contact_gap_ = 0.0;
   Controls controls_;
   Ledger ledger_;
-  std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p (area-weighted RZ form only)
+  std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
   std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
 

@@ -119,6 +119,10 @@ struct ZoneBatch : CornerBatch<zone_batch> {
   double bb[zone_batch];                                    // sum b_p . b_p
   double hourglass_power[zone_batch];
   double edge_compression[4][zone_batch];                   // du . dx of edge (p, p+1), < 0: compressing
+  // Area-weighted RZ form only: the zone's control-volume stress forces (its thermodynamic work) and
+  // its area-weighted stress forces, whose difference corrects the work booked to the zone.
+  double work_x[4][zone_batch], work_y[4][zone_batch];
+  double planar_x[4][zone_batch], planar_y[4][zone_batch];
 
   std::array<Vec2, 4> area_gradient(int i) const {
     return {Vec2{bx[0][i], by[0][i]}, Vec2{bx[1][i], by[1][i]}, Vec2{bx[2][i], by[2][i]}, Vec2{bx[3][i], by[3][i]}};
@@ -217,9 +221,16 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
           const double mean_radius = volume / area;
           batch.mean_radius[i] = mean_radius;
           if constexpr (AreaWeighted) {
+            // Accelerations from Wilkins' area-weighted forces (scaled by s_p at the scatter); the zone's
+            // internal energy from the work of its control-volume forces, -V sigma : D (F4).
+            const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
             for (int p = 0; p < 4; ++p) {
               batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
               batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius;
+              batch.planar_x[p][i] = batch.fx[p][i];
+              batch.planar_y[p][i] = batch.fy[p][i];
+              batch.work_x[p][i] = -(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x);
+              batch.work_y[p][i] = -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y);
             }
           } else {
             const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
@@ -339,9 +350,17 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
       for (int p = 0; p < 4; ++p) {
         Vec2 f{batch.fx[p][i], batch.fy[p][i]};
-        if (area_weighted) f *= node_scale[n[p]];
-        corner[2 * p] = f.x;
-        corner[2 * p + 1] = f.y;
+        if (area_weighted) {
+          // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
+          // stress work plus s_p times its viscous and hourglass forces (only approximately conservative).
+          const double s = node_scale[n[p]];
+          f *= s;
+          corner[2 * p] = f.x + batch.work_x[p][i] - s * batch.planar_x[p][i];
+          corner[2 * p + 1] = f.y + batch.work_y[p][i] - s * batch.planar_y[p][i];
+        } else {
+          corner[2 * p] = f.x;
+          corner[2 * p + 1] = f.y;
+        }
         nodes.force_x[n[p]] += f.x;
         nodes.force_y[n[p]] += f.y;
       }
