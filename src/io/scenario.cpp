@@ -389,6 +389,7 @@ Controls read_controls(JsonObject controls, double end_time) {
   c.max_volume_change = spec->number("max_volume_change", c.max_volume_change, Range{0.0, 1.0, true});
   c.time_step_floor = spec->number("time_step_floor", 0.0, Range::non_negative());
   c.max_cycles = spec->integer("max_cycles", c.max_cycles, 1, 2'000'000'000);
+  c.threads = static_cast<int>(spec->integer("threads", c.threads, 1, 256));
   {
     JsonObject viscosity = spec->object_or_empty("viscosity");
     JsonObject* v = &viscosity;

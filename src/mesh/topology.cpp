@@ -103,6 +103,25 @@ void build_edge_continuations(Mesh& mesh) {
   }
 }
 
+NodeCorners node_corners(const Mesh& mesh) {
+  NodeCorners corners;
+  const Index zone_count = mesh.zones.size();
+  corners.offset.assign(static_cast<std::size_t>(mesh.nodes.size()) + 1, 0);
+  for (Index z = 0; z < zone_count; ++z) {
+    for (const Index n : mesh.zones.corners[z]) ++corners.offset[static_cast<std::size_t>(n) + 1];
+  }
+  for (std::size_t n = 1; n < corners.offset.size(); ++n) corners.offset[n] += corners.offset[n - 1];
+  corners.slot.resize(static_cast<std::size_t>(corners.offset.back()));
+  std::vector<Index> next(corners.offset.begin(), corners.offset.end() - 1);
+  for (Index z = 0; z < zone_count; ++z) {  // zone order, then corner order: the order of the sums
+    for (int p = 0; p < 4; ++p) {
+      const Index n = mesh.zones.corners[z][static_cast<std::size_t>(p)];
+      corners.slot[static_cast<std::size_t>(next[static_cast<std::size_t>(n)]++)] = 4 * z + p;
+    }
+  }
+  return corners;
+}
+
 std::vector<Index> mirrored_edge_slots(const Mesh& mesh) {
   const ZoneFields& zones = mesh.zones;
   std::vector<Index> slots(4 * static_cast<std::size_t>(zones.size()), -1);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
+#include "krug/solver/parallel.hpp"
 #include "krug/solver/zone_forces.hpp"
 #include "krug/solver/zone_update.hpp"
 
@@ -14,24 +15,37 @@ namespace krug {
 
 namespace {
 
-// Picks the compile-time variant of the force kernel once per body.
-ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, Mesh& mesh, const Body& body,
-                                     const ZoneForceParams& params, const double* scale,
-                                     SharedEdgeLimiters limiters) {
-  auto run = [&]<GeometryKind G>() {
-    switch (model) {
-      case ViscosityModel::edge:
-        return accumulate_zone_forces<G, ViscosityModel::edge>(mesh, body.zone_begin, body.zone_end, params, scale,
-                                                               limiters);
-      case ViscosityModel::scalar:
-        return accumulate_zone_forces<G, ViscosityModel::scalar>(mesh, body.zone_begin, body.zone_end, params, scale);
-      case ViscosityModel::off:
-        break;
-    }
-    return accumulate_zone_forces<G, ViscosityModel::off>(mesh, body.zone_begin, body.zone_end, params, scale);
+// Picks the compile-time variant of the force kernel once per body; its blocks of zones share the threads,
+// and their artificial powers are added in block order.
+ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, int threads, Mesh& mesh,
+                                     const Body& body, const ZoneForceParams& params, const double* scale,
+                                     double* work_correction, SharedEdgeLimiters limiters) {
+  std::vector<ArtificialPower> block_power(static_cast<std::size_t>(block_count(body.zone_begin, body.zone_end)));
+  auto run = [&]<GeometryKind G, ViscosityModel V>() {
+    for_each_block(body.zone_begin, body.zone_end, threads, [&](Index block, Index first, Index last) {
+      block_power[static_cast<std::size_t>(block)] =
+          compute_corner_forces<G, V>(mesh, first, last, params, scale, work_correction, limiters);
+    });
   };
-  return geometry == GeometryKind::axisymmetric ? run.template operator()<GeometryKind::axisymmetric>()
-                                                : run.template operator()<GeometryKind::planar>();
+  auto run_geometry = [&]<GeometryKind G>() {
+    switch (model) {
+      case ViscosityModel::edge: return run.template operator()<G, ViscosityModel::edge>();
+      case ViscosityModel::scalar: return run.template operator()<G, ViscosityModel::scalar>();
+      case ViscosityModel::off: break;
+    }
+    return run.template operator()<G, ViscosityModel::off>();
+  };
+  if (geometry == GeometryKind::axisymmetric) {
+    run_geometry.template operator()<GeometryKind::axisymmetric>();
+  } else {
+    run_geometry.template operator()<GeometryKind::planar>();
+  }
+  ArtificialPower power;
+  for (const ArtificialPower& p : block_power) {
+    power.viscous += p.viscous;
+    power.hourglass += p.hourglass;
+  }
+  return power;
 }
 
 }  // namespace
@@ -148,6 +162,7 @@ void Simulation::initialise() {
     }, material.eos);
   }
   build_edge_continuations(mesh_);
+  node_corners_ = node_corners(mesh_);
   share_edge_limiters();
 
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
@@ -276,10 +291,9 @@ void Simulation::update_area_weighted_scale() {
 }
 
 void Simulation::compute_forces() {
-  std::fill(mesh_.nodes.force_x.begin(), mesh_.nodes.force_x.end(), 0.0);
-  std::fill(mesh_.nodes.force_y.begin(), mesh_.nodes.force_y.end(), 0.0);
   if (geometry_ == GeometryKind::axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
     update_area_weighted_scale();
+    area_weighted_work_.resize(mesh_.zones.corner_force.size());
   }
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
   for (const Body& body : bodies_) {
@@ -293,11 +307,15 @@ void Simulation::compute_forces() {
     params.previous_time_step = time_step_previous_;
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
-    const ArtificialPower power = dispatch_zone_forces(geometry_, controls_.viscosity.model, mesh_, body, params,
-                                                       area_weighted_scale_.data(), limiters);
+    const ArtificialPower power =
+        dispatch_zone_forces(geometry_, controls_.viscosity.model, controls_.threads, mesh_, body, params,
+                             area_weighted_scale_.data(), area_weighted_work_.data(), limiters);
     ledger_.energy.viscous += dt_mid * power.viscous;
     ledger_.energy.hourglass += dt_mid * power.hourglass;
   }
+  for_each_block(0, mesh_.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
+    sum_corner_forces(mesh_, node_corners_, first, last);
+  });
 }
 
 void Simulation::predict_velocities() {
@@ -308,10 +326,12 @@ void Simulation::predict_velocities() {
   nodes.v_old.swap(nodes.v);
   particles_.u_old = particles_.u;  // particles feel no F: u* = u^{n-1/2}
   particles_.v_old = particles_.v;
-  for (Index p = 0; p < nodes.size(); ++p) {
-    nodes.u[p] = nodes.u_old[p] + dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
-    nodes.v[p] = nodes.v_old[p] + dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
-  }
+  for_each_block(0, nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
+    for (Index p = first; p < last; ++p) {
+      nodes.u[p] = nodes.u_old[p] + dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
+      nodes.v[p] = nodes.v_old[p] + dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
+    }
+  });
   // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
   for (const NodeConstraint& c : constraints_) {
     if (c.fix_x) {
@@ -365,10 +385,12 @@ void Simulation::correct_and_move() {
   NodeFields& nodes = mesh_.nodes;
   const double dt = time_step_next_;
   if (!contact_.empty()) book_contact_work(0.5 * (time_step_previous_ + time_step_next_));
-  for (Index p = 0; p < nodes.size(); ++p) {
-    nodes.x[p] += dt * nodes.u[p];
-    nodes.y[p] += dt * nodes.v[p];
-  }
+  for_each_block(0, nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
+    for (Index p = first; p < last; ++p) {
+      nodes.x[p] += dt * nodes.u[p];
+      nodes.y[p] += dt * nodes.v[p];
+    }
+  });
   for (Index i = 0; i < particles_.size(); ++i) {
     particles_.x[i] += dt * particles_.u[i];
     particles_.y[i] += dt * particles_.v[i];
@@ -386,20 +408,28 @@ void Simulation::update_zones() {
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
     params.shear_modulus = material.shear_modulus();
-    // One dispatch per body: the zone loop is compiled for this geometry, EOS and strength model.
-    const ZoneUpdateResult result = std::visit([&](const auto& eos, const auto& strength) {
-      return geometry_ == GeometryKind::axisymmetric
-                 ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, body.zone_begin, body.zone_end, eos, strength, params)
-                 : krug::update_zones<GeometryKind::planar>(mesh_, body.zone_begin, body.zone_end, eos, strength, params);
+    const double* work_correction = area_weighted_work_.empty() ? nullptr : area_weighted_work_.data();
+    // One dispatch per body: the zone loop is compiled for this geometry, EOS and strength model; its
+    // blocks share the threads, and their results are taken in block order.
+    std::vector<ZoneUpdateResult> block_results(static_cast<std::size_t>(block_count(body.zone_begin, body.zone_end)));
+    std::visit([&](const auto& eos, const auto& strength) {
+      for_each_block(body.zone_begin, body.zone_end, controls_.threads, [&](Index block, Index first, Index last) {
+        block_results[static_cast<std::size_t>(block)] =
+            geometry_ == GeometryKind::axisymmetric
+                ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, first, last, eos, strength, params, work_correction)
+                : krug::update_zones<GeometryKind::planar>(mesh_, first, last, eos, strength, params, work_correction);
+      });
     }, material.eos, material.strength);
-    ledger_.energy.plastic += result.plastic_work;
-    if (result.failed_zone >= 0) {
-      fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
-    }
-    internal += result.internal_energy;
-    if (result.stable_time_step < stable_time_step_) {
-      stable_time_step_ = result.stable_time_step;
-      controlling_zone_ = result.controlling_zone;
+    for (const ZoneUpdateResult& result : block_results) {
+      ledger_.energy.plastic += result.plastic_work;
+      if (result.failed_zone >= 0) {
+        fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
+      }
+      internal += result.internal_energy;
+      if (result.stable_time_step < stable_time_step_) {
+        stable_time_step_ = result.stable_time_step;
+        controlling_zone_ = result.controlling_zone;
+      }
     }
     zone_cycles_ += body.zone_end - body.zone_begin;
   }

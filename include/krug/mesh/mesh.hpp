@@ -86,6 +86,14 @@ struct BoundarySegment {
   Index zone;
 };
 
+// The corners of each node: the slots 4 z + p of the zone corners on node n are
+// slot[offset[n] .. offset[n + 1]), sorted by zone (then by p).
+struct NodeCorners {
+  std::vector<Index> offset;
+  std::vector<Index> slot;
+};
+NodeCorners node_corners(const Mesh& mesh);
+
 // Recomputes edge_before/edge_after for all zones from the connectivity of active zones.
 void build_edge_continuations(Mesh& mesh);
 

@@ -45,6 +45,7 @@ struct Controls {
   double max_volume_change = 0.1;        // largest |dV/V| of a zone per step
   double time_step_floor = 0.0;          // s; 0 = 1e-9 of the first step. Below it the run stops.
   long max_cycles = 100'000'000;
+  int threads = 1;                       // threads for the zone and node loops; the results do not depend on it
   ViscosityParams viscosity;
   HourglassParams hourglass;
   AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;

@@ -175,6 +175,8 @@ class Simulation {
   Ledger ledger_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
   std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
+  NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
+  std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
 
   double time_ = 0.0;

@@ -131,13 +131,17 @@ struct ZoneBatch : CornerBatch<zone_batch> {
 
 }  // namespace detail
 
-// Adds the corner forces of the active zones in [zone_begin, zone_end) to nodes.force_{x,y}, stores
-// them in zones.corner_force and the viscous signal speed in zones.viscous_speed. Velocities are
-// read from nodes.u/v (t^{n-1/2}). `node_scale` is s_p for the area-weighted form (else unused).
+// Stores the corner forces of the zones in [zone_begin, zone_end) in zones.corner_force (zero for an
+// inactive zone) and the viscous signal speed in zones.viscous_speed; `sum_corner_forces` then adds
+// them up at the nodes. Velocities are read from nodes.u/v (t^{n-1/2}). Writes nothing outside its
+// zones, so that blocks of zones can be computed on different threads. Area-weighted RZ form only:
+// `node_scale` is s_p, the stored forces are the nodes' (s_p times the area-weighted ones), and
+// `work_correction` (8 per zone) receives what turns their work into the zone's own (control-volume)
+// stress work.
 template <GeometryKind G, ViscosityModel Visc>
-ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_end,
-                                       const ZoneForceParams& params, const double* node_scale,
-                                       SharedEdgeLimiters shared_limiters = {}) {
+ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_end, const ZoneForceParams& params,
+                                      const double* node_scale, double* work_correction,
+                                      SharedEdgeLimiters shared_limiters = {}) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
@@ -146,7 +150,6 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
   const bool hourglass_stiff = stiffness_modulus != 0.0;
   const double cq_s = params.viscosity.quadratic * params.shock_slope;
   const double cl = params.viscosity.linear;
-  NodeFields& nodes = mesh.nodes;
   ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
@@ -341,32 +344,55 @@ ArtificialPower accumulate_zone_forces(Mesh& mesh, Index zone_begin, Index zone_
       }
     }
 
-    // Scatter in zone order.
+    // Store the corner forces (the nodes add them up in zone order, `sum_corner_forces`).
     for (int i = 0; i < count; ++i) {
       const Index z = first + i;
-      if (!zones.active[z]) continue;
-      const ZoneCorners& n = zones.corners[z];
-      if (hourglass_on) power.hourglass += batch.hourglass_power[i];
       double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
-      for (int p = 0; p < 4; ++p) {
-        Vec2 f{batch.fx[p][i], batch.fy[p][i]};
-        if (area_weighted) {
-          // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
-          // stress work plus s_p times its viscous and hourglass forces (only approximately conservative).
+      if (!zones.active[z]) {
+        std::fill(corner, corner + 8, 0.0);
+        continue;
+      }
+      if (hourglass_on) power.hourglass += batch.hourglass_power[i];
+      if (area_weighted) {
+        // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
+        // stress work plus s_p times its viscous and hourglass forces (only approximately conservative).
+        const ZoneCorners& n = zones.corners[z];
+        double* correction = &work_correction[8 * static_cast<std::size_t>(z)];
+        for (int p = 0; p < 4; ++p) {
           const double s = node_scale[n[p]];
-          f *= s;
-          corner[2 * p] = f.x + batch.work_x[p][i] - s * batch.planar_x[p][i];
-          corner[2 * p + 1] = f.y + batch.work_y[p][i] - s * batch.planar_y[p][i];
-        } else {
-          corner[2 * p] = f.x;
-          corner[2 * p + 1] = f.y;
+          corner[2 * p] = s * batch.fx[p][i];
+          corner[2 * p + 1] = s * batch.fy[p][i];
+          correction[2 * p] = batch.work_x[p][i] - s * batch.planar_x[p][i];
+          correction[2 * p + 1] = batch.work_y[p][i] - s * batch.planar_y[p][i];
         }
-        nodes.force_x[n[p]] += f.x;
-        nodes.force_y[n[p]] += f.y;
+      } else {
+        for (int p = 0; p < 4; ++p) {
+          corner[2 * p] = batch.fx[p][i];
+          corner[2 * p + 1] = batch.fy[p][i];
+        }
       }
     }
   }
   return power;
+}
+
+// The force on each node of [node_begin, node_end): the sum of the corner forces of its zones, in zone
+// order (`corners` lists each node's corner slots 4 z + p, sorted by zone). An inactive zone's corner
+// forces are +0 (compute_corner_forces), and adding +0 leaves a sum started at +0 bitwise unchanged, so
+// no test of `active` is needed.
+inline void sum_corner_forces(Mesh& mesh, const NodeCorners& corners, Index node_begin, Index node_end) {
+  NodeFields& nodes = mesh.nodes;
+  const double* corner_force = mesh.zones.corner_force.data();
+  for (Index node = node_begin; node < node_end; ++node) {
+    double fx = 0.0, fy = 0.0;
+    for (Index k = corners.offset[node]; k < corners.offset[node + 1]; ++k) {
+      const std::size_t slot = static_cast<std::size_t>(corners.slot[k]);
+      fx += corner_force[2 * slot];
+      fy += corner_force[2 * slot + 1];
+    }
+    nodes.force_x[node] = fx;
+    nodes.force_y[node] = fy;
+  }
 }
 
 }  // namespace krug

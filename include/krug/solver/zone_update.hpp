@@ -77,9 +77,13 @@ struct UpdateBatch : CornerBatch<update_batch> {  // corner positions x^{n+1}, v
 
 }  // namespace detail
 
+// Updates the zones of [zone_begin, zone_end); writes nothing outside them, so that blocks of zones can
+// be updated on different threads. `work_correction` (8 per zone, area-weighted RZ form only, else
+// null) is added to the corner forces' work: it makes the work the zone's own control-volume stress work.
 template <GeometryKind G, class EquationOfState, class StrengthModel>
 ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& material_eos,
-                              const StrengthModel& material_strength, const ZoneUpdateParams& params) {
+                              const StrengthModel& material_strength, const ZoneUpdateParams& params,
+                              const double* work_correction = nullptr) {
   // Local copies: the compiler then knows that the zone stores do not change the material
   // parameters, and keeps what depends only on them (such as the EOS's compression limit) out of the loop.
   const EquationOfState eos = material_eos;
@@ -124,10 +128,19 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       // Compatible energy: the work of the corner forces over the step at the mid-step velocity.
       const double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
       double work = 0.0;
-      for (int p = 0; p < 4; ++p) {
-        const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
-        const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
-        work += corner[2 * p] * ubar + corner[2 * p + 1] * vbar;
+      if (work_correction) {
+        const double* correction = &work_correction[8 * static_cast<std::size_t>(z)];
+        for (int p = 0; p < 4; ++p) {
+          const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
+          const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
+          work += (corner[2 * p] + correction[2 * p]) * ubar + (corner[2 * p + 1] + correction[2 * p + 1]) * vbar;
+        }
+      } else {
+        for (int p = 0; p < 4; ++p) {
+          const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
+          const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
+          work += corner[2 * p] * ubar + corner[2 * p + 1] * vbar;
+        }
       }
       const double energy = zones.specific_energy[z] - params.time_step_mid * work / zones.mass[z];
 

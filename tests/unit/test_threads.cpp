@@ -1,0 +1,82 @@
+// The zone and node loops run in fixed blocks of zones shared by threads (solver/parallel.hpp): a run
+// must give the same bits on one thread as on several, including the ledger's sums.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <vector>
+
+#include "krug/krug.hpp"
+
+using namespace krug;
+
+namespace {
+
+// Every node and zone field that the step writes, and the ledger.
+std::vector<double> state_of(const Simulation& sim) {
+  std::vector<double> out;
+  const NodeFields& n = sim.mesh().nodes;
+  const ZoneFields& z = sim.mesh().zones;
+  for (const auto* f : {&n.x, &n.y, &n.u, &n.v, &n.force_x, &n.force_y}) out.insert(out.end(), f->begin(), f->end());
+  for (const auto* f : {&z.density, &z.specific_energy, &z.pressure, &z.sound_speed, &z.volume, &z.deviator_xx,
+                        &z.deviator_yy, &z.deviator_xy, &z.deviator_zz, &z.plastic_strain, &z.hourglass_x,
+                        &z.hourglass_y, &z.corner_force, &z.viscous_speed, &z.stable_time_step}) {
+    out.insert(out.end(), f->begin(), f->end());
+  }
+  const EnergyLedger& e = sim.ledger().energy;
+  for (double v : {e.kinetic, e.internal, e.plastic, e.viscous, e.hourglass, sim.ledger().axial_momentum, sim.time()}) {
+    out.push_back(v);
+  }
+  return out;
+}
+
+bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// A block with a blast in one corner: 100 x 100 = 10 000 zones, three blocks of 4 096.
+SimulationSetup blast(GeometryKind geometry, AxisymmetricForm form, bool strength, int threads) {
+  SimulationSetup s;
+  s.geometry = geometry;
+  const int n = 100;
+  auto patch = generate::rectangle(s.mesh, generate::graded_axis(0.0, {{1.0, n, 1.0}}),
+                                   generate::graded_axis(0.0, {{1.0, n, 1.0}}), 0);
+  Material material{"gas", 1.0, IdealGas{1.4}, NoStrength{}};
+  if (strength) material = Material{"solid", 1.0, IdealGas{1.4}, LinearHardening{0.5, 0.02, 0.1}};
+  s.materials.push_back(material);
+  s.bodies.push_back({"block", 0, patch.node_begin, patch.node_end, patch.zone_begin, patch.zone_end});
+  for (Index z = 0; z < s.mesh.zones.size(); ++z) {
+    const Vec2 c = quad::centre(s.mesh.corner_positions(z));
+    s.mesh.zones.specific_energy[z] = c.x < 0.2 && c.y < 0.2 ? 10.0 : 0.1;
+  }
+  for (Index node : patch.sides["i_min"]) s.constraints.push_back({node, true, false});
+  for (Index node : patch.sides["j_min"]) s.constraints.push_back({node, false, true});
+  s.controls.end_time = 1.0;
+  s.controls.max_cycles = 60;
+  s.controls.axisymmetric_form = form;
+  s.controls.threads = threads;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("One thread and two threads give bitwise the same run", "[threads]") {
+  struct Case {
+    const char* name;
+    GeometryKind geometry;
+    AxisymmetricForm form;
+    bool strength;
+  };
+  for (const Case& c : {Case{"planar gas", GeometryKind::planar, AxisymmetricForm::control_volume, false},
+                        Case{"RZ gas, control volume", GeometryKind::axisymmetric, AxisymmetricForm::control_volume, false},
+                        Case{"RZ gas, area weighted", GeometryKind::axisymmetric, AxisymmetricForm::area_weighted, false},
+                        Case{"RZ with strength", GeometryKind::axisymmetric, AxisymmetricForm::control_volume, true}}) {
+    INFO(c.name);
+    Simulation one(blast(c.geometry, c.form, c.strength, 1));
+    Simulation two(blast(c.geometry, c.form, c.strength, 2));
+    while (!one.finished()) one.step();
+    while (!two.finished()) two.step();
+    REQUIRE(one.cycle() == 60);
+    CHECK(two.cycle() == one.cycle());
+    CHECK(bitwise_equal(state_of(one), state_of(two)));
+  }
+}
