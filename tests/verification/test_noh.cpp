@@ -76,15 +76,15 @@ TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, control-volume form", 
             {"Noh, spherical (RZ polar, control volume)", 3, Coordinate::radius});
 }
 
-// Known failure F4 (docs/verification.md, partly fixed): the area mass is renewed every step and each
-// zone's energy is its own p dV, but the row next to the axis lags and tangles at t = 0.17.
+// Known failure F4 (docs/verification.md): the area-weighted form now keeps the rows identical, but its
+// shock runs 2.4 zones ahead and its plateau is 23 % low.
 TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, area-weighted form", "[noh][axisymmetric][!mayfail]") {
   io::Scenario scenario = load_example("noh_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
   check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, area weighted)", 3, Coordinate::radius});
 }
 
-// Known failures F7 and F4 (docs/verification.md): both forms stop next to the axis (t = 0.21 and 0.18).
+// Known failure F7 (docs/verification.md): both forms stop near the origin (t = 0.21 and 0.18).
 TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end (robustness)", "[noh][axisymmetric][!mayfail]") {
   // verification.md E2: the rectangular mesh only for robustness: it must reach t = 0.6 without
   // tangling or a collapsing time step; its accuracy is not judged.

@@ -86,7 +86,7 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, control-volume form", "[sedov
               {"Sedov, spherical (RZ polar, control volume)", Coordinate::radius, 1.0, spherical_energy});
 }
 
-// Known failure F4 (docs/verification.md, partly fixed): tangles next to the axis at t = 0.46, see test_noh.cpp.
+// Known failure F4 (docs/verification.md): symmetric, but gains 5.7 % energy and its shock is 3.5 zones out.
 TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov][axisymmetric][!mayfail]") {
   io::Scenario scenario = load_example("sedov_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;

@@ -355,15 +355,20 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
       if (hourglass_on) power.hourglass += batch.hourglass_power[i];
       if (area_weighted) {
         // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
-        // stress work plus s_p times its viscous and hourglass forces (only approximately conservative).
+        // stress work plus w_p times its viscous and hourglass forces (only approximately conservative).
+        // w_p = s_p stands for the node's radius (M_p / M^A_p grows like sin(theta_p) along every line of
+        // an equal-angle polar mesh), except on the axis: there the consistent mass has no mirror row and
+        // s_p = h/3 (h: the radius of the first line off the axis) where the radius is 0, which gave the
+        // row next to the axis 4/3 of the other rows' viscous heating per unit mass (F4). w_p = 0 there.
         const ZoneCorners& n = zones.corners[z];
         double* correction = &work_correction[8 * static_cast<std::size_t>(z)];
         for (int p = 0; p < 4; ++p) {
           const double s = node_scale[n[p]];
+          const double w = mesh.nodes.y[n[p]] == 0.0 ? 0.0 : s;
           corner[2 * p] = s * batch.fx[p][i];
           corner[2 * p + 1] = s * batch.fy[p][i];
-          correction[2 * p] = batch.work_x[p][i] - s * batch.planar_x[p][i];
-          correction[2 * p + 1] = batch.work_y[p][i] - s * batch.planar_y[p][i];
+          correction[2 * p] = batch.work_x[p][i] + w * (batch.fx[p][i] - batch.planar_x[p][i]) - corner[2 * p];
+          correction[2 * p + 1] = batch.work_y[p][i] + w * (batch.fy[p][i] - batch.planar_y[p][i]) - corner[2 * p + 1];
         }
       } else {
         for (int p = 0; p < 4; ++p) {
