@@ -25,10 +25,11 @@
 namespace {
 
 constexpr std::string_view usage = R"(usage:
-  krug run SCENARIO.json [--out DIR] [--quiet | --verbose] [--no-pictures] [--no-plots]
+  krug run SCENARIO.json [--out DIR] [--threads N] [--quiet | --verbose] [--no-pictures] [--no-plots]
       Runs a scenario; writes DIR/summary.json, history.csv, final.vtu, run.pvd, snapshots/,
-      pictures/ (PNG, with Cairo) and plots/ (PNG, with Python and matplotlib).
-  krug run --restart DIR/checkpoint.bin [--out DIR] [--quiet | --verbose] [--no-pictures] [--no-plots]
+      pictures/ (PNG, with Cairo) and plots/ (PNG, with Python and matplotlib). --threads sets
+      controls.threads (the Lagrangian step's zone and node loops; results are the same bits).
+  krug run --restart DIR/checkpoint.bin [--out DIR] [--threads N] [--quiet | --verbose] [--no-pictures] [--no-plots]
       Continues a run from a checkpoint (output.checkpoint_interval, or written on Ctrl-C/SIGTERM),
       with the scenario.resolved.json next to it; outputs go to DIR (default: the checkpoint's).
   krug validate SCENARIO.json
@@ -79,14 +80,16 @@ struct Arguments {
   bool plots = true;
   std::vector<std::string> sets;
   int jobs = 0;
+  int threads = 0;  // 0: the scenario's controls.threads
 };
 
 int run(const Arguments& args) {
   const bool restarting = !args.restart.empty();
   const std::filesystem::path checkpoint(args.restart);
-  const krug::io::Scenario scenario =
+  krug::io::Scenario scenario =
       restarting ? krug::io::load_scenario(checkpoint.parent_path() / "scenario.resolved.json")
                  : krug::io::load_scenario(args.scenario);
+  if (args.threads > 0) scenario.setup.controls.threads = args.threads;  // the results do not depend on it
   const std::filesystem::path directory =
       !args.out.empty() ? std::filesystem::path(args.out)
       : restarting     ? (checkpoint.parent_path().empty() ? std::filesystem::path(".") : checkpoint.parent_path())
@@ -190,6 +193,12 @@ int main(int argc, char** argv) {
       const long jobs = v ? std::strtol(v->c_str(), &end, 10) : 0;
       if (!v || *end != '\0' || jobs < 1 || jobs > 1024) return fail_usage("--jobs needs a number from 1 to 1024");
       args.jobs = static_cast<int>(jobs);
+    } else if (w == "--threads" && args.command == "run") {
+      const std::string* v = value();
+      char* end = nullptr;
+      const long threads = v ? std::strtol(v->c_str(), &end, 10) : 0;
+      if (!v || *end != '\0' || threads < 1 || threads > 256) return fail_usage("--threads needs a number from 1 to 256");
+      args.threads = static_cast<int>(threads);
     } else if (w == "--quiet") {
       args.quiet = true;
     } else if (w == "--verbose" && args.command == "run") {

@@ -56,6 +56,9 @@ TEST_CASE("usage errors exit with code 2 and say what is wrong", "[app][cli]") {
   CHECK(run_krug({"run", "--restart", (dir / "missing.bin").string()}, dir / "restart2.log").exit_code == 2);
   CHECK(run_krug({"sweep", example("sod.json").string()}, dir / "sweep.log").exit_code == 2);
   CHECK(run_krug({"validate", (dir / "missing.json").string()}, dir / "missing.log").exit_code == 2);
+  const auto threads = run_krug({"run", example("sod.json").string(), "--threads", "0"}, dir / "threads.log");
+  CHECK(threads.exit_code == 2);
+  CHECK_THAT(threads.output, Catch::Contains("--threads needs a number from 1 to 256"));
 }
 
 TEST_CASE("krug validate accepts every example and refuses broken files with the JSON path", "[app][cli]") {
