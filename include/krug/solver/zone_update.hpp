@@ -175,8 +175,10 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       }
       // A damaged zone resists only volumetric compression (DESIGN.md section 2 step 6).
       const double pressure = damaged ? std::max(eos.pressure(density, energy), 0.0) : eos.pressure(density, energy);
-      const double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure) +
-                                        (damaged ? 0.0 : 4.0 * params.shear_modulus / (3.0 * density));
+      double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure);
+      if constexpr (has_strength) {  // a gas has no shear wave: no division for it
+        wave_speed_squared += damaged ? 0.0 : 4.0 * params.shear_modulus / (3.0 * density);
+      }
       const double sound_speed = std::sqrt(std::max(wave_speed_squared, 0.0));
 
       zones.area[z] = area;
