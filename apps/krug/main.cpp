@@ -44,6 +44,14 @@ Exit codes: 0 completed, 1 run failed, 2 bad input or usage, 3 unexpected error,
 128 + signal when interrupted (130 for Ctrl-C; a checkpoint is written first).
 )";
 
+// The whole word as a number from 1 to `most`; 0 when it is missing, not a number or out of range.
+int count_in(const std::string* word, long most) {
+  if (!word) return 0;
+  char* end = nullptr;
+  const long n = std::strtol(word->c_str(), &end, 10);
+  return *end == '\0' && n >= 1 && n <= most ? static_cast<int>(n) : 0;
+}
+
 int fail_usage(const std::string& message) {
   std::fprintf(stderr, "krug: %s\n%s", message.c_str(), std::string(usage).c_str());
   return 2;
@@ -188,17 +196,11 @@ int main(int argc, char** argv) {
       if (!v) return fail_usage("--set needs PATH=VALUE1,VALUE2,...");
       args.sets.push_back(*v);
     } else if (w == "--jobs" && args.command == "sweep") {
-      const std::string* v = value();
-      char* end = nullptr;
-      const long jobs = v ? std::strtol(v->c_str(), &end, 10) : 0;
-      if (!v || *end != '\0' || jobs < 1 || jobs > 1024) return fail_usage("--jobs needs a number from 1 to 1024");
-      args.jobs = static_cast<int>(jobs);
+      args.jobs = count_in(value(), 1024);
+      if (args.jobs == 0) return fail_usage("--jobs needs a number from 1 to 1024");
     } else if (w == "--threads" && args.command == "run") {
-      const std::string* v = value();
-      char* end = nullptr;
-      const long threads = v ? std::strtol(v->c_str(), &end, 10) : 0;
-      if (!v || *end != '\0' || threads < 1 || threads > 256) return fail_usage("--threads needs a number from 1 to 256");
-      args.threads = static_cast<int>(threads);
+      args.threads = count_in(value(), 256);
+      if (args.threads == 0) return fail_usage("--threads needs a number from 1 to 256");
     } else if (w == "--quiet") {
       args.quiet = true;
     } else if (w == "--verbose" && args.command == "run") {
