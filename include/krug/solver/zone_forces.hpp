@@ -13,7 +13,7 @@
 //
 // Artificial viscosity, edge form (Caramana, Shashkov & Whalen 1998): on each compressing edge
 // (du . dx < 0) the damper force kappa du acts between its nodes,
-//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| |cos| (x r_S in RZ),
+//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| |cos| (x w_S in RZ CV),
 // S the median-mesh segment from the zone centre to the edge midpoint, cos the cosine between du and
 // the normal of S (a velocity difference along S, a shear across the edge, gets no viscosity: without
 // this factor Saltzman's skewed grid tangled, docs/verification.md F5); psi the limiter built from the
@@ -291,7 +291,13 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
           const Vec2 median = 0.5 * (x[k] + x[k1]) - centre;  // S, from the zone centre to the edge midpoint
           // |S| x |cos(du, n_S)|: the damper acts on the part of du across the median segment (CSW98).
           double face = std::abs(du.y * median.x - du.x * median.y) / du_norm;
-          if (axisymmetric && !area_weighted) face *= centre.y + 0.5 * median.y;
+          // RZ control volume: the radius weight w_S = (r_edge + 2 r_centre) / 3, not the radius of S's midpoint
+          // (r_edge + r_centre) / 2. The CV pressure force on corner p along z is p b_p,z (r_{p-1} + r_p + r_{p+1}) / 3
+          // (dV/dz_p), and w_S is the mean of that weight over the edge's two nodes, so that a viscous pressure
+          // acts through the same r-weights as the pressure, which the consistent nodal mass (F1) matches.
+          // Interior nodes of a uniform grid see the same sum as before; an axis node saw 3/4 of the
+          // deceleration of its neighbours off the axis (the spherical Noh's axis row, docs/verification.md).
+          if (axisymmetric && !area_weighted) face *= centre.y + median.y / 3.0;
           const double quadratic = cq_s * du_norm;
           const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
           const double kappa = q_over_du * face;  // force per unit velocity difference
