@@ -160,17 +160,19 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
 
 // The mesh study (docs/validation.md, "Mesh"; scripts/paper_study.py, group mesh): dU/U0 of the
 // bullet body at 5, 7 and 10 zones per mm. Band: their mean plus or minus their spread (max - min).
-//   monolithic 0.2277 0.2301 0.2491   mean 0.2356  spread 0.0214
-//   layered    0.2271 0.2196 0.1923   mean 0.2130  spread 0.0348
-//   spaced     0.1752 0.1771 0.1628   mean 0.1717  spread 0.0143
-// Orderings asserted: only those that hold at every level with gaps above the spreads, spaced below
-// monolithic (gaps 0.052, 0.053, 0.086) and spaced below layered (0.052, 0.043, 0.030): the loss of
-// each lies above the whole spaced band. Monolithic is ahead of layered at every level too, but at
-// 5 zones per mm by 0.0006 only, far inside the spreads: not asserted.
+//   monolithic 0.2415 0.2457 0.2481   mean 0.2451  spread 0.0067
+//   layered    0.2283 0.2057 0.1959   mean 0.2100  spread 0.0324
+//   spaced     0.1812 0.1821 0.1560   mean 0.1731  spread 0.0261
+// Orderings asserted: only those that hold at every level with gaps above the spreads: spaced below
+// monolithic (gaps 0.060, 0.064, 0.092), so the monolithic loss lies above the whole spaced band.
+// Not asserted: spaced below layered (gaps 0.047, 0.024, 0.040: at 7 zones per mm inside the spaced
+// spread) and monolithic ahead of layered (0.013, 0.040, 0.052: at 5 zones per mm inside the layered
+// spread). (Before the viscosity fix F8 of docs/verification.md: 0.2277 0.2301 0.2491, 0.2271 0.2196
+// 0.1923, 0.1752 0.1771 0.1628.)
 TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("monolithic_3mm_2.6g_z5.json");
-  check_common(run, "paper: monolithic 3 mm", 0.2356, 0.0214);
-  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1717 + 0.0143);
+  check_common(run, "paper: monolithic 3 mm", 0.2451, 0.0067);
+  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1731 + 0.0261);
   // The paper: "a plug somewhat thinner than the plate forms". The plate leaves at least two pieces,
   // and its fast zones on the axis span less than the 3 mm plate but more than half of it.
   CHECK(run.fragments.at(0) >= 2);
@@ -183,8 +185,7 @@ TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones
 
 TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("layered_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: layered 3 x 1 mm", 0.2130, 0.0348);
-  CHECK((run.initial_speed - run.residual) / run.initial_speed > 0.1717 + 0.0143);
+  check_common(run, "paper: layered 3 x 1 mm", 0.2100, 0.0324);
   // The paper: "the front layer fractures first, the rear layers bend strongly and separate, and their
   // fracture starts on the axis". Damage in order front to rear; in the two rear plates the first
   // damage of the plate lies under the bullet (within its radius, as for the monolithic plate).
@@ -206,7 +207,7 @@ TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zo
 
 TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: spaced 3 x 1 mm", 0.1717, 0.0143);
+  check_common(run, "paper: spaced 3 x 1 mm", 0.1731, 0.0261);
   // The paper: "plugging of each plate in turn". Damage in order, and every plate in pieces.
   REQUIRE(run.first_damage.size() == 3);
   CHECK(run.first_damage[0].time < run.first_damage[1].time);
