@@ -305,7 +305,15 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
           batch.fy[k][i] += kappa * du.y;
           batch.fx[k1][i] -= kappa * du.x;
           batch.fy[k1][i] -= kappa * du.y;
-          power.viscous += kappa * dot(du, du);
+          double dissipation = kappa * dot(du, du);
+          if (area_weighted) {
+            // The planar damper's work booked with the nodes' weights (0 on the axis, see the scatter):
+            // in J per radian, like the other forms; their mean over the edge is an approximation.
+            const double wk = mesh.nodes.y[n[k]] == 0.0 ? 0.0 : node_scale[n[k]];
+            const double wk1 = mesh.nodes.y[n[k1]] == 0.0 ? 0.0 : node_scale[n[k1]];
+            dissipation *= 0.5 * (wk + wk1);
+          }
+          power.viscous += dissipation;
           viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
         }
         zones.viscous_speed[z] = viscous_speed;
