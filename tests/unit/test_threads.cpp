@@ -33,8 +33,8 @@ bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-// A block with a blast in one corner: 120 x 120 = 14 400 zones, four blocks of 4 096 (the fewest that
-// run on several threads, min_parallel_blocks).
+// A block with a blast in one corner: 120 x 120 = 14 400 zones, eight blocks of 1 800 (block_size),
+// shared by the two threads.
 SimulationSetup blast(GeometryKind geometry, AxisymmetricForm form, bool strength, int threads) {
   SimulationSetup s;
   s.geometry = geometry;

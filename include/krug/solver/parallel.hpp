@@ -8,26 +8,40 @@
 
 namespace krug {
 
-// Zones (or nodes) per block: large enough that a block's limiter sharing and loop set-up are
-// amortised, small enough that 40 000 zones give each of two threads several blocks.
-inline constexpr Index work_block = 4096;
+// Zones (or nodes) per block, from the loop's length alone (never from the number of threads): an
+// eighth of the loop, at least 1 024 and at most 4 096. Large blocks keep the limiter sharing, which a
+// block boundary interrupts (a 400-zone-wide grid in blocks of 1 024 recomputed 40 % of its limiters
+// and ran 1.5 times slower on two threads than in blocks of 4 096); small loops, such as the bodies of
+// the paper's case (1 700 to 2 600 zones), still get two blocks or more (1.4 times faster on two free
+// cores, docs/performance.md).
+inline constexpr Index smallest_block = 1024;
+inline constexpr Index largest_block = 4096;
 
-inline Index block_count(Index begin, Index end) { return end > begin ? (end - begin + work_block - 1) / work_block : 0; }
+inline Index block_size(Index length) {
+  return std::clamp<Index>((length + 7) / 8, smallest_block, largest_block);
+}
+
+inline Index block_count(Index begin, Index end) {
+  if (end <= begin) return 0;
+  const Index size = block_size(end - begin);
+  return (end - begin + size - 1) / size;
+}
 
 // Fewer blocks than this run on the calling thread alone: starting the other threads and waiting for
-// them at the end of the loop costs more than they save on a small loop, and far more when another
-// process holds a core (measured: a paper case whose largest loop had 3 blocks ran 8 times slower on
-// two threads while the other core was busy).
-inline constexpr Index min_parallel_blocks = 4;
+// them at the end of the loop costs more than they save on a small loop. (Any loop on two threads is
+// slow when another process holds a core: a paper case ran 8 times slower on two threads than on one
+// while the other core was busy. Hence the default of one thread.)
+inline constexpr Index min_parallel_blocks = 2;
 
 // Calls body(block, first, last) for every block of [begin, end), on up to `threads` threads.
 template <class Body>
 void for_each_block(Index begin, Index end, int threads, Body&& body) {
   const Index blocks = block_count(begin, end);
+  const Index size = blocks > 0 ? block_size(end - begin) : 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && blocks >= min_parallel_blocks)
   for (Index b = 0; b < blocks; ++b) {
-    const Index first = begin + b * work_block;
-    body(b, first, std::min(end, first + work_block));
+    const Index first = begin + b * size;
+    body(b, first, std::min(end, first + size));
   }
 }
 
