@@ -18,13 +18,13 @@ namespace {
 // Picks the compile-time variant of the force kernel once per body; its blocks of zones share the threads,
 // and their artificial powers are added in block order.
 ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, int threads, Mesh& mesh,
-                                     const Body& body, const ZoneForceParams& params, const double* scale,
-                                     double* work_correction, SharedEdgeLimiters limiters) {
+                                     const Body& body, const ZoneForceParams& params,
+                                     AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters) {
   std::vector<ArtificialPower> block_power(static_cast<std::size_t>(block_count(body.zone_begin, body.zone_end)));
   auto run = [&]<GeometryKind G, ViscosityModel V>() {
     for_each_block(body.zone_begin, body.zone_end, threads, [&](Index block, Index first, Index last) {
       block_power[static_cast<std::size_t>(block)] =
-          compute_corner_forces<G, V>(mesh, first, last, params, scale, work_correction, limiters);
+          compute_corner_forces<G, V>(mesh, first, last, params, area_weighted, limiters);
     });
   };
   auto run_geometry = [&]<GeometryKind G>() {
@@ -284,17 +284,26 @@ void Simulation::update_area_weighted_scale() {
       for (const Index n : zones.corners[z]) area_weighted_scale_[static_cast<std::size_t>(n)] += corner_area_mass;
     }
   }
+  // The booking weight of a node's viscous and hourglass work: s_p stands for the node's radius (along
+  // every line of an equal-angle polar mesh M_p / M^A_p grows like sin(theta_p)), except on the axis,
+  // where the consistent mass has no mirror row and s_p = h/3 (h: the radius of the first line off the
+  // axis) while the radius is 0; booked with s_p, the row next to the axis took 4/3 of the other rows'
+  // viscous heating per unit mass (docs/verification.md, F4). 0 there.
+  area_weighted_booking_.resize(area_weighted_scale_.size());
   for (std::size_t p = 0; p < area_weighted_scale_.size(); ++p) {
     const double area_mass = area_weighted_scale_[p];
     area_weighted_scale_[p] = area_mass > 0.0 ? nodes.mass[static_cast<Index>(p)] / area_mass : 0.0;
+    area_weighted_booking_[p] = nodes.y[static_cast<Index>(p)] == 0.0 ? 0.0 : area_weighted_scale_[p];
   }
+  area_weighted_work_.resize(zones.corner_force.size());
 }
 
 void Simulation::compute_forces() {
   if (geometry_ == GeometryKind::axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
     update_area_weighted_scale();
-    area_weighted_work_.resize(mesh_.zones.corner_force.size());
   }
+  const AreaWeightedArrays area_weighted{area_weighted_scale_.data(), area_weighted_booking_.data(),
+                                         area_weighted_work_.data()};
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
@@ -309,7 +318,7 @@ void Simulation::compute_forces() {
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
     const ArtificialPower power =
         dispatch_zone_forces(geometry_, controls_.viscosity.model, controls_.threads, mesh_, body, params,
-                             area_weighted_scale_.data(), area_weighted_work_.data(), limiters);
+                             area_weighted, limiters);
     ledger_.energy.viscous += dt_mid * power.viscous;
     ledger_.energy.hourglass += dt_mid * power.hourglass;
   }

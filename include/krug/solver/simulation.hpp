@@ -138,7 +138,7 @@ class Simulation {
  private:
   // The recipe, in order.
   void compute_forces();          // 1. F^n: corner forces of every zone
-  void update_area_weighted_scale();  // s_p = M_p / M^A_p at the current positions (area-weighted RZ)
+  void update_area_weighted_scale();  // s_p = M_p / M^A_p and the booking weights, at the current positions (area-weighted RZ)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from predicted gaps (no contact pairs yet)
   void correct_and_move();        // 4. u^{n+1/2} = u* + dt^n R / M, x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
@@ -174,6 +174,7 @@ class Simulation {
   Controls controls_;
   Ledger ledger_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
+  std::vector<double> area_weighted_booking_;  // its viscous/hourglass work weight: s_p, 0 on the axis
   std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
   NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form

@@ -56,6 +56,15 @@ struct SharedEdgeLimiters {
   double* value = nullptr;        // 4 per zone: psi of the compressing edges of the current step
 };
 
+// The area-weighted RZ form's per-step arrays (Simulation::update_area_weighted_scale); unused otherwise.
+struct AreaWeightedArrays {
+  const double* scale = nullptr;    // per node: s_p = M_p / M^A_p, the factor of the node's forces
+  const double* booking = nullptr;  // per node: the weight of its viscous and hourglass work in the zone's
+                                    // energy: s_p, which stands for the node's radius, but 0 on the axis
+  double* work_correction = nullptr;  // 8 per zone, written: what turns the work of the stored corner
+                                      // forces into the zone's own energy increment
+};
+
 namespace detail {
 
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
@@ -134,13 +143,13 @@ struct ZoneBatch : CornerBatch<zone_batch> {
 // Stores the corner forces of the zones in [zone_begin, zone_end) in zones.corner_force (zero for an
 // inactive zone) and the viscous signal speed in zones.viscous_speed; `sum_corner_forces` then adds
 // them up at the nodes. Velocities are read from nodes.u/v (t^{n-1/2}). Writes nothing outside its
-// zones, so that blocks of zones can be computed on different threads. Area-weighted RZ form only:
-// `node_scale` is s_p, the stored forces are the nodes' (s_p times the area-weighted ones), and
-// `work_correction` (8 per zone) receives what turns their work into the zone's own (control-volume)
-// stress work.
+// zones, so that blocks of zones can be computed on different threads. Area-weighted RZ form only: the
+// stored forces are the nodes' (s_p times the area-weighted ones), and `area_weighted_arrays.work_correction`
+// receives what turns their work into the zone's own (control-volume) stress work plus its booked
+// viscous and hourglass work.
 template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_end, const ZoneForceParams& params,
-                                      const double* node_scale, double* work_correction,
+                                      AreaWeightedArrays area_weighted_arrays = {},
                                       SharedEdgeLimiters shared_limiters = {}) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
@@ -307,11 +316,9 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
           batch.fy[k1][i] -= kappa * du.y;
           double dissipation = kappa * dot(du, du);
           if (area_weighted) {
-            // The planar damper's work booked with the nodes' weights (0 on the axis, see the scatter):
-            // in J per radian, like the other forms; their mean over the edge is an approximation.
-            const double wk = mesh.nodes.y[n[k]] == 0.0 ? 0.0 : node_scale[n[k]];
-            const double wk1 = mesh.nodes.y[n[k1]] == 0.0 ? 0.0 : node_scale[n[k1]];
-            dissipation *= 0.5 * (wk + wk1);
+            // The planar damper's work with the nodes' booking weights: in J per radian, like the other
+            // forms; their mean over the edge is an approximation.
+            dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
           }
           power.viscous += dissipation;
           viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
@@ -369,16 +376,13 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
       if (hourglass_on) power.hourglass += batch.hourglass_power[i];
       if (area_weighted) {
         // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
-        // stress work plus w_p times its viscous and hourglass forces (only approximately conservative).
-        // w_p = s_p stands for the node's radius (M_p / M^A_p grows like sin(theta_p) along every line of
-        // an equal-angle polar mesh), except on the axis: there the consistent mass has no mirror row and
-        // s_p = h/3 (h: the radius of the first line off the axis) where the radius is 0, which gave the
-        // row next to the axis 4/3 of the other rows' viscous heating per unit mass (F4). w_p = 0 there.
+        // stress work plus the booking weight w_p times its viscous and hourglass forces (only
+        // approximately conservative).
         const ZoneCorners& n = zones.corners[z];
-        double* correction = &work_correction[8 * static_cast<std::size_t>(z)];
+        double* correction = &area_weighted_arrays.work_correction[8 * static_cast<std::size_t>(z)];
         for (int p = 0; p < 4; ++p) {
-          const double s = node_scale[n[p]];
-          const double w = mesh.nodes.y[n[p]] == 0.0 ? 0.0 : s;
+          const double s = area_weighted_arrays.scale[n[p]];
+          const double w = area_weighted_arrays.booking[n[p]];
           corner[2 * p] = s * batch.fx[p][i];
           corner[2 * p + 1] = s * batch.fy[p][i];
           correction[2 * p] = batch.work_x[p][i] + w * (batch.fx[p][i] - batch.planar_x[p][i]) - corner[2 * p];

@@ -127,21 +127,18 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
 
       // Compatible energy: the work of the corner forces over the step at the mid-step velocity.
       const double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
-      double work = 0.0;
-      if (work_correction) {
-        const double* correction = &work_correction[8 * static_cast<std::size_t>(z)];
+      const auto work_of = [&](auto force) {  // force(j): component j of the 8 corner values
+        double sum = 0.0;
         for (int p = 0; p < 4; ++p) {
           const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
           const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
-          work += (corner[2 * p] + correction[2 * p]) * ubar + (corner[2 * p + 1] + correction[2 * p + 1]) * vbar;
+          sum += force(2 * p) * ubar + force(2 * p + 1) * vbar;
         }
-      } else {
-        for (int p = 0; p < 4; ++p) {
-          const double ubar = 0.5 * (nodes.u_old[n[p]] + nodes.u[n[p]]);
-          const double vbar = 0.5 * (nodes.v_old[n[p]] + nodes.v[n[p]]);
-          work += corner[2 * p] * ubar + corner[2 * p + 1] * vbar;
-        }
-      }
+        return sum;
+      };
+      const double* correction = work_correction ? &work_correction[8 * static_cast<std::size_t>(z)] : nullptr;
+      const double work = correction ? work_of([&](int j) { return corner[j] + correction[j]; })
+                                     : work_of([&](int j) { return corner[j]; });
       const double energy = zones.specific_energy[z] - params.time_step_mid * work / zones.mass[z];
 
       if (!(area > 0.0) || !(volume > 0.0) || !std::isfinite(energy)) {
