@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine (packages), builds Krug optimised and passes the test suite:
-# unit, kernel, verification, app and package tests; the convergence studies at reduced size
+# unit, verification, app and package tests; the convergence studies at reduced size
 # (KRUG_CONVERGENCE_SCALE, default 0.5 here; 1 is the full study); then a build of the unit tests
 # and the app with AddressSanitizer and UndefinedBehaviorSanitizer.
 set -euo pipefail

@@ -76,8 +76,8 @@ TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, control-volume form", 
             {"Noh, spherical (RZ polar, control volume)", 3, Coordinate::radius});
 }
 
-// Known failure F4 (docs/verification.md): the area-weighted form now keeps the rows identical, but its
-// shock runs 2.4 zones ahead and its plateau is 23 % low.
+// Known failure F4 (docs/verification.md): the area-weighted form now keeps the rows identical, but at
+// 100 x 40 its shock runs 2.8 zones ahead and its plateau is 12.8 % low.
 TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, area-weighted form", "[noh][axisymmetric][!mayfail]") {
   io::Scenario scenario = load_example("noh_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;

@@ -21,7 +21,7 @@ namespace {
 //  - energy: the compatible update conserves total energy to round-off (DESIGN.md section 2);
 //    a few hundred steps of 1e-16 relative increments stay far below 1e-12 [7e-15].
 //  - L1 density error below 3e-3 [2.29e-3]; it halves with each doubling of the zones
-//    (convergence_sod.cpp), so 3e-3 is an absolute bound at this resolution, not a fit.
+//    (convergence_studies.cpp), so 3e-3 is an absolute bound at this resolution, not a fit.
 constexpr double wave_tolerance_zones = 1.0;
 constexpr double plateau_mean_tolerance = 0.01;
 constexpr double plateau_zone_tolerance = 0.03;
