@@ -20,11 +20,10 @@ namespace {
 ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, int threads, Mesh& mesh,
                                      const Body& body, const ZoneForceParams& params,
                                      AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters) {
-  std::vector<ArtificialPower> block_power(static_cast<std::size_t>(block_count(body.zone_begin, body.zone_end)));
+  std::vector<ArtificialPower> block_power;
   auto run = [&]<GeometryKind G, ViscosityModel V>() {
-    for_each_block(body.zone_begin, body.zone_end, threads, [&](Index block, Index first, Index last) {
-      block_power[static_cast<std::size_t>(block)] =
-          compute_corner_forces<G, V>(mesh, first, last, params, area_weighted, limiters);
+    block_power = block_results<ArtificialPower>(body.zone_begin, body.zone_end, threads, [&](Index first, Index last) {
+      return compute_corner_forces<G, V>(mesh, first, last, params, area_weighted, limiters);
     });
   };
   auto run_geometry = [&]<GeometryKind G>() {
@@ -164,6 +163,9 @@ void Simulation::initialise() {
   build_edge_continuations(mesh_);
   node_corners_ = node_corners(mesh_);
   share_edge_limiters();
+  if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
+    area_weighted_work_.assign(zones.corner_force.size(), 0.0);  // its presence selects the form's per-step arrays
+  }
 
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
   double stable = std::numeric_limits<double>::infinity();
@@ -295,13 +297,10 @@ void Simulation::update_area_weighted_scale() {
     area_weighted_scale_[p] = area_mass > 0.0 ? nodes.mass[static_cast<Index>(p)] / area_mass : 0.0;
     area_weighted_booking_[p] = nodes.y[static_cast<Index>(p)] == 0.0 ? 0.0 : area_weighted_scale_[p];
   }
-  area_weighted_work_.resize(zones.corner_force.size());
 }
 
 void Simulation::compute_forces() {
-  if (geometry_ == GeometryKind::axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
-    update_area_weighted_scale();
-  }
+  if (!area_weighted_work_.empty()) update_area_weighted_scale();
   const AreaWeightedArrays area_weighted{area_weighted_scale_.data(), area_weighted_booking_.data(),
                                          area_weighted_work_.data()};
   const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
@@ -420,16 +419,14 @@ void Simulation::update_zones() {
     const double* work_correction = area_weighted_work_.empty() ? nullptr : area_weighted_work_.data();
     // One dispatch per body: the zone loop is compiled for this geometry, EOS and strength model; its
     // blocks share the threads, and their results are taken in block order.
-    std::vector<ZoneUpdateResult> block_results(static_cast<std::size_t>(block_count(body.zone_begin, body.zone_end)));
-    std::visit([&](const auto& eos, const auto& strength) {
-      for_each_block(body.zone_begin, body.zone_end, controls_.threads, [&](Index block, Index first, Index last) {
-        block_results[static_cast<std::size_t>(block)] =
-            geometry_ == GeometryKind::axisymmetric
-                ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, first, last, eos, strength, params, work_correction)
-                : krug::update_zones<GeometryKind::planar>(mesh_, first, last, eos, strength, params, work_correction);
+    const std::vector<ZoneUpdateResult> results = std::visit([&](const auto& eos, const auto& strength) {
+      return block_results<ZoneUpdateResult>(body.zone_begin, body.zone_end, controls_.threads, [&](Index first, Index last) {
+        return geometry_ == GeometryKind::axisymmetric
+                   ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, first, last, eos, strength, params, work_correction)
+                   : krug::update_zones<GeometryKind::planar>(mesh_, first, last, eos, strength, params, work_correction);
       });
     }, material.eos, material.strength);
-    for (const ZoneUpdateResult& result : block_results) {
+    for (const ZoneUpdateResult& result : results) {
       ledger_.energy.plastic += result.plastic_work;
       if (result.failed_zone >= 0) {
         fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);

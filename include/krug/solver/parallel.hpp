@@ -3,6 +3,7 @@
 // the number of threads, and every sum over blocks is taken in block order, so a run gives the same
 // bits on one thread as on several.
 #include <algorithm>
+#include <vector>
 
 #include "krug/mesh/mesh.hpp"
 
@@ -43,6 +44,17 @@ void for_each_block(Index begin, Index end, int threads, Body&& body) {
     const Index first = begin + b * size;
     body(b, first, std::min(end, first + size));
   }
+}
+
+// Calls body(first, last) for every block of [begin, end) as for_each_block does, and returns what each
+// call returned, in block order (so that the caller combines them in an order independent of the threads).
+template <class Result, class Body>
+std::vector<Result> block_results(Index begin, Index end, int threads, Body&& body) {
+  std::vector<Result> results(static_cast<std::size_t>(block_count(begin, end)));
+  for_each_block(begin, end, threads, [&](Index block, Index first, Index last) {
+    results[static_cast<std::size_t>(block)] = body(first, last);
+  });
+  return results;
 }
 
 }  // namespace krug

@@ -67,6 +67,14 @@ struct AreaWeightedArrays {
 
 namespace detail {
 
+// The axisymmetric control-volume stress force on a corner, f_p = -[(V/A)(sigma_2D - sigma_tt I) b_p + sigma_tt c_p]
+// (b_p = dA/dx_p, c_p = dV/dx_p), from the stress components sigma_xx, sigma_yy, sigma_xy, sigma_tt.
+[[gnu::always_inline]] inline Vec2 control_volume_force(double sxx, double syy, double sxy, double stt,
+                                                        double mean_radius, Vec2 b, Vec2 c) {
+  return {-(mean_radius * ((sxx - stt) * b.x + sxy * b.y) + stt * c.x),
+          -(mean_radius * (sxy * b.x + (syy - stt) * b.y) + stt * c.y)};
+}
+
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
 // gradient along the edge itself, psi = max(0, min(1, (r_b + r_a)/2, 2 r_b, 2 r_a)).
 inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index b, Index after,
@@ -241,14 +249,16 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
               batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius;
               batch.planar_x[p][i] = batch.fx[p][i];
               batch.planar_y[p][i] = batch.fy[p][i];
-              batch.work_x[p][i] = -(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x);
-              batch.work_y[p][i] = -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y);
+              const Vec2 work = detail::control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
+              batch.work_x[p][i] = work.x;
+              batch.work_y[p][i] = work.y;
             }
           } else {
             const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
             for (int p = 0; p < 4; ++p) {
-              batch.fx[p][i] = -(mean_radius * ((sxx - stt) * b[p].x + sxy * b[p].y) + stt * volume_gradient[p].x);
-              batch.fy[p][i] = -(mean_radius * (sxy * b[p].x + (syy - stt) * b[p].y) + stt * volume_gradient[p].y);
+              const Vec2 f = detail::control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
+              batch.fx[p][i] = f.x;
+              batch.fy[p][i] = f.y;
             }
           }
         } else {
