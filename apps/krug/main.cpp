@@ -155,6 +155,7 @@ int run(const Arguments& args) {
       const std::string how = result.stopped_by == "stop rule" ? " (ended by the stop rule)" : "";
       std::printf("krug: %s completed%s in %.2f s; results in %s (summary.json, history.csv, run.pvd)\n", title.c_str(),
                   how.c_str(), result.wall_seconds, directory.string().c_str());
+      for (const std::string& line : krug::io::penetration_lines(result)) std::printf("krug: %s\n", line.c_str());
     }
     return 0;
   }

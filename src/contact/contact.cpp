@@ -44,24 +44,6 @@ void ContactSolver::rebuild_boundaries(const Mesh& mesh) {
 
 // --- points: nodes and particles -------------------------------------------------------------
 
-Vec2 ContactSolver::position(Index point) const {
-  return is_particle(point) ? particles_->position(particle_of(point)) : mesh_->nodes.position(point);
-}
-Vec2 ContactSolver::velocity(Index point) const {
-  return is_particle(point) ? particles_->velocity(particle_of(point)) : mesh_->nodes.velocity(point);
-}
-Vec2 ContactSolver::predicted(Index point, double dt) const { return position(point) + dt * velocity(point); }
-InverseMass ContactSolver::inverse_mass(Index point) const {
-  if (point == -1) return {};
-  if (is_particle(point)) {
-    const double inverse = 1.0 / particles_->mass[particle_of(point)];
-    return {inverse, inverse};
-  }
-  return {mesh_->nodes.inv_mass_x[point], mesh_->nodes.inv_mass_y[point]};
-}
-double ContactSolver::radius(Index point) const {
-  return is_particle(point) ? particles_->radius[particle_of(point)] : 0.0;
-}
 Vec2 ContactSolver::reaction_force(Index point) const {
   if (is_particle(point)) {
     const Index i = particle_of(point);

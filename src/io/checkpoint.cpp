@@ -32,7 +32,7 @@ static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed:
 static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/io/checkpoint.cpp");
 static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/io/checkpoint.cpp");
 static_assert(sizeof(std::vector<double>) != 24 ||
-                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 2 * 24 + 9 * 8,
+                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 3 * 24 + 9 * 8,
               "SimulationState changed: update src/io/checkpoint.cpp");
 
 class Writer {
@@ -179,6 +179,7 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   particle_fields(w, s.particles);
   w.value(s.ledger);
   w.vector(s.fracture_counts);
+  w.vector(s.body_plastic_work);
   w.vector(s.zones_per_node);
   w.value(s.time);
   w.value(static_cast<std::int64_t>(s.cycle));
@@ -212,6 +213,18 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   for (const auto* q : {&stop.max_x, &stop.min_x, &stop.max_y, &stop.min_y}) {
     w.vector(items_of(*q));
   }
+  w.value(static_cast<std::uint8_t>(progress.has_penetration));
+  w.value(progress.penetration);
+  const TimeStepRecord& steps = progress.time_steps;
+  w.vector(steps.zone_cycles);
+  w.value(steps.growth_cycles);
+  w.value(steps.particle_cycles);
+  w.value(steps.other_cycles);
+  w.value(steps.smallest);
+  w.value(steps.smallest_time);
+  w.value(steps.smallest_body);
+  w.value(steps.smallest_zone);
+  w.value(steps.smallest_limit);
   w.value(fnv1a(w.bytes()));
   w.raw(end_magic, sizeof end_magic);
   write_text_atomically(file, w.bytes());
@@ -255,6 +268,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   particle_fields(r, s.particles);
   s.ledger = r.value<Ledger>();
   r.vector(s.fracture_counts);
+  r.vector(s.body_plastic_work);
   r.vector(s.zones_per_node);
   s.time = r.value<double>();
   s.cycle = static_cast<long>(r.value<std::int64_t>());
@@ -292,6 +306,18 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
     q->clear();
     for (const TimedValue& item : items) q->emplace_back(item.time, item.value);
   }
+  p.has_penetration = r.value<std::uint8_t>() != 0;
+  p.penetration = r.value<PenetrationRecord>();
+  TimeStepRecord& steps = p.time_steps;
+  r.vector(steps.zone_cycles);
+  steps.growth_cycles = r.value<std::int64_t>();
+  steps.particle_cycles = r.value<std::int64_t>();
+  steps.other_cycles = r.value<std::int64_t>();
+  steps.smallest = r.value<double>();
+  steps.smallest_time = r.value<double>();
+  steps.smallest_body = r.value<std::int32_t>();
+  steps.smallest_zone = r.value<std::int32_t>();
+  steps.smallest_limit = r.value<std::int32_t>();
   if (r.position() != body_end) r.corrupt("unexpected bytes after the last field");
   // Consistency of the sizes read (a checkpoint that passed its checksum but was written wrongly).
   const auto nodes = s.mesh.nodes.x.size();

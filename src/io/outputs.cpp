@@ -31,6 +31,17 @@ Json pair(Vec2 v) { return Json::array({v.x, v.y}); }
 // JSON has no NaN or infinity: such a value is written as null (and the run has failed anyway).
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+const char* time_step_limit_name(std::int32_t limit) {
+  switch (static_cast<TimeStepLimit>(limit)) {
+    case TimeStepLimit::zone: return "zone";
+    case TimeStepLimit::growth: return "growth_limit";
+    case TimeStepLimit::particle_travel: return "particle_travel";
+    case TimeStepLimit::maximum: return "max_time_step";
+    case TimeStepLimit::end_time: return "end_time";
+  }
+  return "zone";
+}
+
 }  // namespace
 
 std::string summary_json(const Simulation& simulation, const RunResult& result) {
@@ -45,6 +56,7 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   s["axes"] = Json::array({std::string(axis_name(g, 0)), std::string(axis_name(g, 1))});
   s["units"] = "SI (m, kg, s, Pa, J); masses, momenta and energies for whole bodies";
   s["stopped_by"] = result.stopped_by;
+  s["warnings"] = result.warnings;
   s["time"] = simulation.time();
   s["cycles"] = simulation.cycle();
   s["zone_cycles"] = simulation.zone_cycles();
@@ -102,7 +114,63 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   s["particles"] = {{"count", particles.size()},
                     {"mass", whole * particle_mass},
                     {"momentum", pair(whole * particle_momentum)}};
+  const TimeStepRecord& steps = result.time_steps;
+  Json set_by = Json::object();
+  for (std::size_t b = 0; b < steps.zone_cycles.size() && b < simulation.bodies().size(); ++b) {
+    set_by[simulation.bodies()[b].name] = steps.zone_cycles[b];
+  }
+  set_by["growth_limit"] = steps.growth_cycles;
+  set_by["particle_travel"] = steps.particle_cycles;
+  set_by["other"] = steps.other_cycles;
+  Json smallest = {{"dt", steps.smallest}, {"time", steps.smallest_time}, {"set_by", time_step_limit_name(steps.smallest_limit)}};
+  if (steps.smallest_body >= 0) {
+    smallest["body"] = simulation.bodies()[static_cast<std::size_t>(steps.smallest_body)].name;
+    smallest["zone"] = steps.smallest_zone;
+  }
+  s["time_step"] = {{"cycles_set_by", set_by}, {"smallest", smallest}};
+  if (result.penetration) {
+    const PenetrationReport& p = *result.penetration;
+    s["penetration"] = {{"projectile", p.projectile},
+                        {"final", p.final},
+                        {"perforated", p.perforated},
+                        {"perforation_time", p.perforated ? Json(p.perforation_time) : Json(nullptr)},
+                        {"depth", p.depth},
+                        {"residual_velocity", p.residual_velocity},
+                        {"residual_velocity_vector", pair(p.residual_velocity_vector)},
+                        {"residual_mass", p.residual_mass},
+                        {"initial_mass", p.initial_mass},
+                        {"mass_lost", p.mass_lost},
+                        {"eroded_mass", p.eroded_mass},
+                        {"residual_kinetic_energy", p.projectile_kinetic_energy},
+                        {"plug", p.plug_body.empty() ? Json(nullptr)
+                                                     : Json{{"body", p.plug_body}, {"mass", p.plug_mass}, {"velocity", p.plug_velocity}}},
+                        {"target_plastic_work", p.target_plastic_work},
+                        {"target_kinetic_energy", p.target_kinetic_energy},
+                        {"target_energy_absorbed", p.target_energy_absorbed}};
+  }
   return s.dump(2) + "\n";
+}
+
+std::vector<std::string> penetration_lines(const RunResult& result) {
+  std::vector<std::string> lines;
+  if (!result.penetration) return lines;
+  const PenetrationReport& p = *result.penetration;
+  if (p.perforated) {
+    lines.push_back(fmt::format("{} perforated at {:.2f} us: residual velocity {:.1f} m/s, residual mass {:.4g} g "
+                                "({:.1f} % lost, {:.1f} % eroded)",
+                                p.projectile, 1e6 * p.perforation_time, p.residual_velocity, 1e3 * p.residual_mass,
+                                100.0 * p.mass_lost / p.initial_mass, 100.0 * p.eroded_mass / p.initial_mass));
+  } else {
+    lines.push_back(fmt::format("{} did not perforate: depth {:.3f} mm, velocity {:.1f} m/s, mass {:.4g} g", p.projectile,
+                                1e3 * p.depth, p.residual_velocity, 1e3 * p.residual_mass));
+  }
+  lines.push_back(p.plug_body.empty() ? std::string("no plug")
+                                      : fmt::format("plug from {}: {:.4g} g at {:.1f} m/s", p.plug_body, 1e3 * p.plug_mass,
+                                                    p.plug_velocity));
+  lines.push_back(fmt::format("energy absorbed by the targets {:.4g} J (plastic work {:.4g} J, kinetic {:.4g} J)",
+                              p.target_energy_absorbed, p.target_plastic_work, p.target_kinetic_energy));
+  if (!p.final) lines.push_back("not final: the run ended before the projectile cleared its targets or stopped");
+  return lines;
 }
 
 RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
@@ -155,6 +223,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
   if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
   snapshots_ = resume.snapshots;
   particle_snapshots_ = resume.particle_snapshots;
+  time_steps_ = resume.time_steps;
   next_history_time_ = resume.next_history_time;
   next_snapshot_time_ = resume.next_snapshot_time;
 }
@@ -174,6 +243,7 @@ RunProgress RunRecorder::progress() {
   p.snapshots = snapshots_;
   p.particle_snapshots = particle_snapshots_;
   p.history_bytes = history_bytes_;
+  p.time_steps = time_steps_;
   return p;
 }
 
@@ -226,7 +296,32 @@ void RunRecorder::write_snapshot(const Simulation& simulation) {
   }
 }
 
+void RunRecorder::count_time_step(const Simulation& simulation) {
+  TimeStepRecord& r = time_steps_;
+  if (r.zone_cycles.size() != simulation.bodies().size()) r.zone_cycles.assign(simulation.bodies().size(), 0);
+  const TimeStepLimit limit = simulation.time_step_limit();
+  const Index body = limit == TimeStepLimit::zone ? simulation.body_of_zone(simulation.controlling_zone()) : -1;
+  switch (limit) {
+    case TimeStepLimit::zone:
+      if (body >= 0) ++r.zone_cycles[static_cast<std::size_t>(body)];
+      else ++r.other_cycles;
+      break;
+    case TimeStepLimit::growth: ++r.growth_cycles; break;
+    case TimeStepLimit::particle_travel: ++r.particle_cycles; break;
+    default: ++r.other_cycles; break;
+  }
+  const double dt = simulation.next_time_step();
+  if (limit != TimeStepLimit::end_time && !simulation.finished() && (r.smallest == 0.0 || dt < r.smallest)) {
+    r.smallest = dt;
+    r.smallest_time = simulation.time();
+    r.smallest_limit = static_cast<std::int32_t>(limit);
+    r.smallest_body = body;
+    r.smallest_zone = body >= 0 ? simulation.controlling_zone() - simulation.bodies()[static_cast<std::size_t>(body)].zone_begin : -1;
+  }
+}
+
 void RunRecorder::observe(const Simulation& simulation) {
+  count_time_step(simulation);
   if (simulation.time() >= next_history_time_ * (1.0 - 1e-12)) {
     write_history_row(simulation);
     while (next_history_time_ <= simulation.time()) {
@@ -256,7 +351,9 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   pvd += "  </Collection>\n</VTKFile>\n";
   write_text_atomically(directory_ / "run.pvd", pvd);
   picture(simulation, "final");
-  write_text_atomically(directory_ / "summary.json", summary_json(simulation, result));
+  RunResult full = result;
+  full.time_steps = time_steps_;
+  write_text_atomically(directory_ / "summary.json", summary_json(simulation, full));
 }
 
 }  // namespace krug::io

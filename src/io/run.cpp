@@ -17,6 +17,7 @@ namespace {
 // Where a run stands between cycles, apart from the simulation and the recorder.
 struct LoopState {
   std::optional<StopMonitor> stop;
+  std::optional<PenetrationRecord> penetration;
   double next_checkpoint_time = 0.0;
   double previous_wall_seconds = 0.0;  // wall time before a restart
 };
@@ -28,7 +29,9 @@ std::optional<StopMonitor> stop_monitor(const Scenario& scenario) {
 
 // Feeds the stop rule one sample: the body's velocity, and whether it is clear of the rule's plane
 // (every node that carries mass beyond it, the way the body first moved along the first axis).
-bool observe_stop(const Simulation& simulation, StopMonitor& monitor) {
+// With clear_of_targets, also whether the projectile has cleared its targets or stopped advancing.
+bool observe_stop(const Simulation& simulation, StopMonitor& monitor, const Scenario& scenario,
+                  const std::optional<PenetrationRecord>& penetration) {
   const StopRule& rule = monitor.rule();
   const BodySummary body = simulation.summarise(simulation.bodies()[static_cast<std::size_t>(rule.body_index)]);
   bool clear = true;
@@ -36,7 +39,14 @@ bool observe_stop(const Simulation& simulation, StopMonitor& monitor) {
     const bool moving_down = monitor.state().started ? monitor.state().initial_velocity.x < 0.0 : body.velocity.x < 0.0;
     clear = moving_down ? body.bbox_max.x < *rule.clear_of : body.bbox_min.x > *rule.clear_of;
   }
-  return monitor.observe(simulation.time(), body.velocity, clear);
+  return monitor.observe(simulation.time(), body.velocity, [&] {
+    if (!clear) return false;
+    if (!rule.clear_of_targets || !penetration || !scenario.penetration) return true;
+    const PenetrationRecord& r = *penetration;
+    const double advance = r.direction * (r.axis == 0 ? body.velocity.x : body.velocity.y);
+    if (advance <= rule.velocity_change * monitor.state().scale) return true;  // stopped, or turned back
+    return measure_penetration(simulation, *scenario.penetration, r).cleared();
+  });
 }
 
 // The loop after setup (fresh or restored): steps, outputs, stop rule, checkpoints, interruption.
@@ -58,6 +68,10 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
       progress.has_stop_state = true;
       progress.stop = loop.stop->state();
     }
+    if (loop.penetration) {
+      progress.has_penetration = true;
+      progress.penetration = *loop.penetration;
+    }
     result.checkpoint = recorder.directory() / "checkpoint.bin";
     write_checkpoint(result.checkpoint, simulation.state(), progress, scenario_hash);
   };
@@ -65,7 +79,8 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     while (!simulation.finished()) {
       simulation.step();
       recorder.observe(simulation);
-      if (loop.stop && observe_stop(simulation, *loop.stop)) {
+      if (loop.penetration) observe_penetration(simulation, *scenario.penetration, *loop.penetration);
+      if (loop.stop && observe_stop(simulation, *loop.stop, scenario, loop.penetration)) {
         result.stopped_by = "stop rule";
         break;
       }
@@ -99,6 +114,15 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     result.stopped_by = "failure";
   }
   result.wall_seconds = elapsed();
+  if (loop.penetration) {
+    result.penetration = report_penetration(simulation, *scenario.penetration, *loop.penetration);
+    result.penetration->final = result.stopped_by == "stop rule" && loop.stop && loop.stop->rule().clear_of_targets;
+    if (!result.penetration->final && result.status == RunStatus::completed) {
+      result.warnings.push_back(fmt::format(
+          "the run ended ({}) before the projectile had cleared its targets or stopped: the penetration figures are "
+          "those of an unfinished perforation (raise end_time)", result.stopped_by));
+    }
+  }
   recorder.finish(simulation, result);
   return result;
 }
@@ -137,8 +161,9 @@ RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
                                                         : options.output_directory,
                        options.picture);
   LoopState loop;
+  if (scenario.penetration) loop.penetration = start_penetration(simulation, *scenario.penetration);
   loop.stop = stop_monitor(scenario);
-  if (loop.stop) (void)observe_stop(simulation, *loop.stop);
+  if (loop.stop) (void)observe_stop(simulation, *loop.stop, scenario, loop.penetration);
   loop.next_checkpoint_time = scenario.output.checkpoint_interval;
   return run_loop(scenario, simulation, recorder, loop, options);
 }
@@ -169,6 +194,10 @@ RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path
   LoopState loop;
   loop.stop = stop_monitor(scenario);
   if (loop.stop && checkpoint.progress.has_stop_state) loop.stop->restore(checkpoint.progress.stop);
+  if (scenario.penetration) {
+    loop.penetration = checkpoint.progress.has_penetration ? checkpoint.progress.penetration
+                                                           : start_penetration(simulation, *scenario.penetration);
+  }
   loop.next_checkpoint_time = checkpoint.progress.next_checkpoint_time;
   if (scenario.output.checkpoint_interval > 0.0 && !(loop.next_checkpoint_time > simulation.time())) {
     loop.next_checkpoint_time = simulation.time() + scenario.output.checkpoint_interval;

@@ -32,7 +32,20 @@ AxisNames axis_names(GeometryKind g) {
   return {std::string(axis_name(g, 0)), std::string(axis_name(g, 1))};
 }
 
-Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits) {
+// An erosion block {"altitude_ratio", "plastic_strain"}; keys not given keep the values of `base`.
+fracture::ErosionLimits read_erosion(JsonObject spec, fracture::ErosionLimits base) {
+  base.altitude_ratio = spec.number("altitude_ratio", base.altitude_ratio, Range::between(0.0, 1.0));
+  if (spec.has("plastic_strain")) {
+    base.plastic_strain = spec.number("plastic_strain", Range::positive());
+  } else {
+    spec.optional_raw("plastic_strain");  // named among the valid keys
+  }
+  spec.finish();
+  return base;
+}
+
+Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits,
+                       fracture::ErosionLimits& erosion) {
   Material m;
   m.name = name;
   m.reference_density = spec.number("density", Range::positive());
@@ -113,6 +126,7 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
       f->fail_here("expected at least one limit: elongation, tensile_stress, compressive_stress, shear_strain or internal_energy");
     }
   }
+  if (auto e = spec.optional_object("erosion")) erosion = read_erosion(std::move(*e), erosion);
   spec.finish();
   return m;
 }
@@ -555,21 +569,72 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
   return o;
 }
 
-StopRule read_stop_rule(JsonObject spec, const std::vector<Body>& bodies) {
+// The stop rule; in a penetration scenario the body defaults to the projectile and the run waits for
+// it to clear the targets.
+StopRule read_stop_rule(JsonObject spec, const std::vector<Body>& bodies, const std::optional<PenetrationSetup>& penetration) {
   StopRule rule;
-  const Json& name = spec.raw("body");
-  rule.body_index = body_index(spec, "body", name, bodies, spec.path_of("body"));
-  rule.body = name.get<std::string>();
-  spec.resolve("body", name);
-  rule.no_contact_time = spec.number("no_contact_time", Range::positive());
-  rule.velocity_change = spec.number("velocity_change", rule.velocity_change, Range{0.0, 1.0, true});
+  if (penetration && !spec.has("body")) {
+    rule.body_index = penetration->projectile;
+    rule.body = bodies[static_cast<std::size_t>(rule.body_index)].name;
+    spec.optional_raw("body");
+    spec.resolve("body", rule.body);
+  } else {
+    const Json& name = spec.raw("body");
+    rule.body_index = body_index(spec, "body", name, bodies, spec.path_of("body"));
+    rule.body = name.get<std::string>();
+    spec.resolve("body", name);
+  }
+  const double default_window = penetration ? 5e-6 : 0.0;
+  rule.no_contact_time = default_window > 0.0 ? spec.number("no_contact_time", default_window, Range::positive())
+                                              : spec.number("no_contact_time", Range::positive());
+  rule.velocity_change = spec.number("velocity_change", penetration ? 0.005 : rule.velocity_change, Range{0.0, 1.0, true});
   if (spec.has("clear_of")) {
     rule.clear_of = spec.number("clear_of");
   } else {
     spec.optional_raw("clear_of");  // named among the valid keys
   }
+  rule.clear_of_targets = spec.flag("clear_of_targets", penetration.has_value());
+  if (rule.clear_of_targets && !penetration) {
+    spec.fail("clear_of_targets", "false here: clearing the targets needs a \"penetration\" block naming the projectile");
+  }
+  if (rule.clear_of_targets && rule.body_index != penetration->projectile) {
+    spec.fail("body", fmt::format("the projectile \"{}\" when clear_of_targets is true",
+                                  bodies[static_cast<std::size_t>(penetration->projectile)].name));
+  }
   spec.finish();
   return rule;
+}
+
+// {"projectile": name, "targets": [names]}; the targets default to every other body.
+PenetrationSetup read_penetration(JsonObject spec, const std::vector<Body>& bodies) {
+  PenetrationSetup p;
+  const Json& name = spec.raw("projectile");
+  p.projectile = body_index(spec, "projectile", name, bodies, spec.path_of("projectile"));
+  spec.resolve("projectile", name);
+  Json resolved_targets = Json::array();
+  if (const Json* targets = spec.optional_raw("targets")) {
+    if (!targets->is_array() || targets->empty()) spec.fail("targets", "a non-empty array of body names");
+    for (std::size_t i = 0; i < targets->size(); ++i) {
+      const std::string path = fmt::format("{}[{}]", spec.path_of("targets"), i);
+      const Index t = body_index(spec, "targets", (*targets)[i], bodies, path);
+      if (t == p.projectile) throw InputError(fmt::format("{}: the projectile cannot be its own target", path));
+      if (std::find(p.targets.begin(), p.targets.end(), t) != p.targets.end()) {
+        throw InputError(fmt::format("{}: \"{}\" is listed twice", path, bodies[static_cast<std::size_t>(t)].name));
+      }
+      p.targets.push_back(t);
+      resolved_targets.push_back(bodies[static_cast<std::size_t>(t)].name);
+    }
+  } else {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (static_cast<Index>(i) == p.projectile) continue;
+      p.targets.push_back(static_cast<Index>(i));
+      resolved_targets.push_back(bodies[i].name);
+    }
+    if (p.targets.empty()) spec.fail_here("a penetration scenario needs a target: at least one body besides the projectile");
+  }
+  spec.resolve("targets", resolved_targets);
+  spec.finish();
+  return p;
 }
 
 }  // namespace
@@ -605,13 +670,16 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
 
   // Materials: an object name -> definition.
   std::map<std::string, Index> material_index;
+  std::vector<fracture::ErosionLimits> material_erosion;  // per material; a body's own block overrides it
   {
     JsonObject materials = top.object("materials");
     for (const std::string& name : materials.keys()) {
       material_index[name] = static_cast<Index>(setup.materials.size());
       fracture::FractureLimits limits;
-      setup.materials.push_back(read_material(name, materials.object(name), limits));
+      fracture::ErosionLimits erosion;
+      setup.materials.push_back(read_material(name, materials.object(name), limits, erosion));
       setup.fracture.push_back(limits);
+      material_erosion.push_back(erosion);
     }
     if (setup.materials.empty()) materials.fail_here("expected at least one material");
     materials.finish();
@@ -642,11 +710,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
                                    material, list, guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
     }
     body.material = m->second;
-    {
-      JsonObject erosion = spec.object_or_empty("erosion");
-      body.erosion_altitude_ratio = erosion.number("altitude_ratio", 0.0, Range::between(0.0, 1.0));
-      erosion.finish();
-    }
+    body.set_erosion(material_erosion[static_cast<std::size_t>(body.material)]);
+    if (auto erosion = spec.optional_object("erosion")) body.set_erosion(read_erosion(std::move(*erosion), body.erosion()));
     const Index body_index = static_cast<Index>(setup.bodies.size());
     const MeshedBody meshed = read_mesh(spec.object("mesh"), setup.mesh, body_index, geometry);
     body.node_begin = meshed.patch.node_begin;
@@ -699,8 +764,13 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
 
   setup.controls = read_controls(top.object_or_empty("controls"), end_time);
   scenario.output = read_output(top.object_or_empty("output"), end_time, geometry);
-  if (auto stop = top.optional_object("stop")) {
-    scenario.stop = read_stop_rule(*stop, setup.bodies);
+  if (auto penetration = top.optional_object("penetration")) {
+    scenario.penetration = read_penetration(*penetration, setup.bodies);
+  }
+  if (scenario.penetration) {  // a penetration run always has a stop rule: by default, clear of the targets
+    scenario.stop = read_stop_rule(top.object_or_empty("stop"), setup.bodies, scenario.penetration);
+  } else if (auto stop = top.optional_object("stop")) {
+    scenario.stop = read_stop_rule(*stop, setup.bodies, scenario.penetration);
   }
   top.finish();
   scenario.resolved_json = resolved.dump(2);

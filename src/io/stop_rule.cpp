@@ -18,7 +18,7 @@ void push(std::deque<StopMonitor::Sample>& queue, double time, double value, dou
 
 }  // namespace
 
-bool StopMonitor::observe(double time, Vec2 velocity, bool clear) {
+bool StopMonitor::observe(double time, Vec2 velocity, const std::function<bool()>& clear) {
   State& s = state_;
   if (!s.started) {
     s.started = true;
@@ -41,10 +41,10 @@ bool StopMonitor::observe(double time, Vec2 velocity, bool clear) {
     }
     return false;
   }
-  if (time - s.armed_time < rule_.no_contact_time || !clear) return false;
+  if (time - s.armed_time < rule_.no_contact_time) return false;
   const double spread = std::max({s.max_x.front().second - velocity.x, velocity.x - s.min_x.front().second,
                                   s.max_y.front().second - velocity.y, velocity.y - s.min_y.front().second});
-  return spread <= tolerance;
+  return spread <= tolerance && clear();
 }
 
 }  // namespace krug::io

@@ -80,11 +80,12 @@ void Simulation::convert_fractured_zones() {
   std::vector<std::pair<Index, ConversionRule>> chosen;
   // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
   for (const Body& body : bodies_) {
-    if (body.erosion_altitude_ratio <= 0.0) continue;
+    if (!body.erosion().any()) continue;
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z] || zones.damaged[z]) continue;
       const quad::Corners x = mesh_.corner_positions(z);
-      if (quad::smallest_altitude(x, zones.area[z]) < body.erosion_altitude_ratio * zones.initial_altitude[z] ||
+      if (body.erosion().strained(zones.plastic_strain[z]) ||
+          body.erosion().collapsed(quad::smallest_altitude(x, zones.area[z]), zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
         chosen.emplace_back(z, ConversionRule::erosion);
       }
@@ -236,6 +237,8 @@ std::vector<Fragment> Simulation::fragments(const Body& body) const {
     if (s < 0) {
       s = static_cast<Index>(pieces.size());
       pieces.emplace_back();
+      pieces.back().bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      pieces.back().bbox_max = -pieces.back().bbox_min;
     }
     Fragment& f = pieces[static_cast<std::size_t>(s)];
     const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
@@ -243,6 +246,8 @@ std::vector<Fragment> Simulation::fragments(const Body& body) const {
       const Index node = zones.corners[z][p];
       f.velocity += corner_mass[p] * nodes.velocity(node);
       f.centroid += corner_mass[p] * nodes.position(node);
+      f.bbox_min = {std::min(f.bbox_min.x, nodes.x[node]), std::min(f.bbox_min.y, nodes.y[node])};
+      f.bbox_max = {std::max(f.bbox_max.x, nodes.x[node]), std::max(f.bbox_max.y, nodes.y[node])};
     }
     f.mass += zones.mass[z];
     ++f.zones;

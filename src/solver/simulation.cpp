@@ -57,10 +57,11 @@ Simulation::Simulation(SimulationSetup setup)
       constraints_(std::move(setup.constraints)),
       controls_(setup.controls) {
   fracture_counts_.assign(bodies_.size(), FractureCounts{});
+  body_plastic_work_.assign(bodies_.size(), 0.0);
   for (const Body& body : bodies_) {
     const auto m = static_cast<std::size_t>(body.material);
     fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
-    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any() || body.erosion_altitude_ratio > 0.0;
+    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any() || body.erosion().any();
   }
   initialise();
   if (fracture_enabled_) {
@@ -223,6 +224,7 @@ SimulationState Simulation::state() const {
   s.particles = particles_;
   s.ledger = ledger_;
   s.fracture_counts = fracture_counts_;
+  s.body_plastic_work = body_plastic_work_;
   s.zones_per_node = zones_per_node_;
   s.time = time_;
   s.cycle = cycle_;
@@ -237,13 +239,15 @@ SimulationState Simulation::state() const {
 }
 
 void Simulation::restore(SimulationState s) {
-  if (s.mesh.nodes.size() != mesh_.nodes.size() || s.mesh.zones.size() != mesh_.zones.size()) {
-    throw InputError("restart: the checkpoint does not belong to this scenario (mesh sizes differ)");
+  if (s.mesh.nodes.size() != mesh_.nodes.size() || s.mesh.zones.size() != mesh_.zones.size() ||
+      s.fracture_counts.size() != bodies_.size() || s.body_plastic_work.size() != bodies_.size()) {
+    throw InputError("restart: the checkpoint does not belong to this scenario (mesh sizes or body counts differ)");
   }
   mesh_ = std::move(s.mesh);
   particles_ = std::move(s.particles);
   ledger_ = s.ledger;
   fracture_counts_ = std::move(s.fracture_counts);
+  body_plastic_work_ = std::move(s.body_plastic_work);
   zones_per_node_ = std::move(s.zones_per_node);
   time_ = s.time;
   cycle_ = s.cycle;
@@ -428,6 +432,7 @@ void Simulation::update_zones() {
     }, material.eos, material.strength);
     for (const ZoneUpdateResult& result : results) {
       ledger_.energy.plastic += result.plastic_work;
+      body_plastic_work_[static_cast<std::size_t>(&body - bodies_.data())] += result.plastic_work;
       if (result.failed_zone >= 0) {
         fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
       }
@@ -449,13 +454,19 @@ void Simulation::choose_time_step() {
   time_step_previous_ = time_step_next_;
   const double remaining = controls_.end_time - time_;
   double dt = std::min({stable_time_step_, controls_.time_step_growth * time_step_previous_, controls_.max_time_step});
+  time_step_limit_ = dt == stable_time_step_ ? TimeStepLimit::zone
+                     : dt == controls_.max_time_step ? TimeStepLimit::maximum : TimeStepLimit::growth;
   for (Index i = 0; i < particles_.size(); ++i) {  // a particle moves at most a fraction of its radius
     const double speed = norm(particles_.velocity(i));
-    if (speed > 0.0) dt = std::min(dt, controls_.fracture.particle_travel * particles_.radius[i] / speed);
+    if (speed > 0.0 && controls_.fracture.particle_travel * particles_.radius[i] / speed < dt) {
+      dt = controls_.fracture.particle_travel * particles_.radius[i] / speed;
+      time_step_limit_ = TimeStepLimit::particle_travel;
+    }
   }
   if (remaining > 0.0 && dt < time_step_floor_) {
     fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s", dt, time_step_floor_), controlling_zone_);
   }
+  if (remaining < dt) time_step_limit_ = TimeStepLimit::end_time;
   time_step_next_ = std::min(dt, std::max(remaining, 0.0));
   if (time_step_next_ <= 0.0) time_step_next_ = dt;  // finished(); keeps a meaningful value
 }
@@ -494,6 +505,13 @@ void Simulation::fail(const std::string& what, Index zone) const {
   throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, time_,
                                      cycle_, what),
                          body_name, local, time_);
+}
+
+Index Simulation::body_of_zone(Index zone) const {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (zone >= bodies_[b].zone_begin && zone < bodies_[b].zone_end) return static_cast<Index>(b);
+  }
+  return -1;
 }
 
 BodySummary Simulation::summarise(const Body& body) const {

@@ -639,7 +639,7 @@ SimulationSetup coarse_striker(contact::ReactionMethod method) {
       {{"\"radial_zones\": 28", "\"radial_zones\": 8"}, verification::zones(30, 6), verification::zones(56, 11),
        verification::zones(32, 8)});
   scenario.setup.controls.end_time = 30e-6;                                    // the example's
-  for (Body& body : scenario.setup.bodies) body.erosion_altitude_ratio = 0.0;  // as the example
+  for (Body& body : scenario.setup.bodies) body.set_erosion({});  // as the example
   scenario.setup.contact.controls.method = method;
   return scenario.setup;
 }

@@ -136,11 +136,23 @@ class ContactSolver {
   // The reaction normal x n + tangent x t at xi: on the point, and shared by the segment's ends.
   void apply_reaction(const Candidate& c, Vec2 normal, double xi, double normal_force, double tangent_force,
                       double dt_mid);
-  Vec2 position(Index point) const;
-  Vec2 velocity(Index point) const;
-  Vec2 predicted(Index point, double dt) const;
-  InverseMass inverse_mass(Index point) const;
-  double radius(Index point) const;
+  // A point's state (node or particle), inline: the reaction loops call them for every candidate and sweep.
+  Vec2 position(Index point) const {
+    return is_particle(point) ? particles_->position(particle_of(point)) : mesh_->nodes.position(point);
+  }
+  Vec2 velocity(Index point) const {
+    return is_particle(point) ? particles_->velocity(particle_of(point)) : mesh_->nodes.velocity(point);
+  }
+  Vec2 predicted(Index point, double dt) const { return position(point) + dt * velocity(point); }
+  InverseMass inverse_mass(Index point) const {
+    if (point == -1) return {};
+    if (is_particle(point)) {
+      const double inverse = 1.0 / particles_->mass[particle_of(point)];
+      return {inverse, inverse};
+    }
+    return {mesh_->nodes.inv_mass_x[point], mesh_->nodes.inv_mass_y[point]};
+  }
+  double radius(Index point) const { return is_particle(point) ? particles_->radius[particle_of(point)] : 0.0; }
   void touch(Index point, Vec2 force);
 
   Mesh* mesh_ = nullptr;

@@ -55,6 +55,20 @@ struct FractureLimits {
   }
 };
 
+// Erosion of a body that does not fracture (a projectile): an intact zone leaves the mesh as a free
+// element when it has collapsed (smallest altitude below altitude_ratio x its initial one, or an
+// inverted corner) or when its equivalent plastic strain exceeds plastic_strain. Off by default.
+// Erosion is a numerical device against runaway distortion, not a failure law: its mass, momentum and
+// energy are booked like any conversion, and the summary reports the eroded mass.
+struct ErosionLimits {
+  double altitude_ratio = 0.0;       // (-), 0: off
+  double plastic_strain = disabled;  // (-), infinity: off
+
+  bool any() const { return altitude_ratio > 0.0 || std::isfinite(plastic_strain); }
+  bool collapsed(double altitude, double initial_altitude) const { return altitude < altitude_ratio * initial_altitude; }
+  bool strained(double equivalent_plastic_strain) const { return equivalent_plastic_strain > plastic_strain; }
+};
+
 // Principal stretches (in-plane pair and the out-of-plane/hoop one).
 struct Stretches {
   double in_plane_max = 1.0;

@@ -3,7 +3,7 @@
 // progress (output schedule, snapshot list, length of history.csv, stop-rule window, wall time),
 // so that `krug run --restart` continues the run as if it had never stopped.
 //
-// Format (version 1), little-endian, native doubles:
+// Format (version 2), little-endian, native doubles:
 //   "KRUGCKPT"  u32 version  u32 0x01020304 (byte order)  u32 sizeof(double)  u32 sizeof(Index)
 //   u64 FNV-1a hash of the resolved scenario text the run started from
 //   the state and progress, field by field: a vector is a u64 count and its raw elements,
@@ -18,11 +18,23 @@
 #include <vector>
 
 #include "krug/io/stop_rule.hpp"
+#include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::io {
 
-inline constexpr std::uint32_t checkpoint_version = 1;
+inline constexpr std::uint32_t checkpoint_version = 2;
+
+// Which limit set the time step, cycle by cycle: the cycles each body's zones set it, the cycles each
+// other limit did, and the smallest step with where it came from.
+struct TimeStepRecord {
+  std::vector<std::int64_t> zone_cycles;  // per body
+  std::int64_t growth_cycles = 0, particle_cycles = 0, other_cycles = 0;  // other: max_time_step, end time
+  double smallest = 0.0;                  // s (0: no step yet)
+  double smallest_time = 0.0;             // s, when it was taken
+  std::int32_t smallest_body = -1, smallest_zone = -1;  // zone within the body; -1 when not a zone's
+  std::int32_t smallest_limit = 0;        // TimeStepLimit
+};
 
 // What the run loop and the recorder need, besides the simulation, to continue their outputs.
 struct RunProgress {
@@ -35,6 +47,9 @@ struct RunProgress {
   double wall_seconds = 0.0;         // wall time of the run so far
   bool has_stop_state = false;
   StopMonitor::State stop;
+  bool has_penetration = false;
+  PenetrationRecord penetration;
+  TimeStepRecord time_steps;
 };
 
 struct Checkpoint {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct RunResult {
   std::string stopped_by = "end_time";
   std::filesystem::path checkpoint;    // the checkpoint written last, if any
   std::vector<std::string> warnings;   // for the user (e.g. a restart whose scenario was edited)
+  std::optional<PenetrationReport> penetration;  // scenarios with a "penetration" block
+  TimeStepRecord time_steps;           // filled by the recorder
 };
 
 // Picture of the current state (the app draws PNGs with Cairo when it has it): called for the
@@ -39,6 +42,8 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file);
 // Particles as VTK XML PolyData points (mass, radius, velocity, body of origin).
 void write_vtp(const Simulation& simulation, const std::filesystem::path& file);
 std::string summary_json(const Simulation& simulation, const RunResult& result);
+// The penetration result in a few lines for the console (empty without a penetration block).
+std::vector<std::string> penetration_lines(const RunResult& result);
 
 // Writes history rows and snapshots while a run goes on, and the final files when it ends.
 class RunRecorder {
@@ -65,6 +70,7 @@ class RunRecorder {
   static std::string history_header(const Simulation& simulation);
   void append_history(const std::string& text);
   void write_history_row(const Simulation& simulation);
+  void count_time_step(const Simulation& simulation);
   void write_snapshot(const Simulation& simulation);
   void picture(const Simulation& simulation, const std::string& name);
 
@@ -76,6 +82,7 @@ class RunRecorder {
   double next_snapshot_time_ = 0.0;
   std::vector<std::pair<double, std::string>> snapshots_;  // time, file relative to directory_
   std::vector<std::pair<double, std::string>> particle_snapshots_;
+  TimeStepRecord time_steps_;
   PictureHook picture_;
 };
 

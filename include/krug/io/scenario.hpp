@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::io {
@@ -48,6 +49,11 @@ struct StopRule {
   // must have passed, the way the body first moved along that axis, before the run may stop (a long
   // projectile still sliding through its hole is not done).
   std::optional<double> clear_of;
+  // Penetration scenarios (default true there, refused elsewhere): the run also waits until the
+  // projectile's piece has cleared every target's main piece, or has stopped advancing (its speed
+  // along the impact direction no more than velocity_change x its initial speed). No headline figure
+  // of a penetration run is then a bound.
+  bool clear_of_targets = false;
 };
 
 struct Scenario {
@@ -56,6 +62,7 @@ struct Scenario {
   SimulationSetup setup;
   OutputSettings output;
   std::optional<StopRule> stop;
+  std::optional<PenetrationSetup> penetration;  // scenario key "penetration": which body is the projectile
   std::string resolved_json;  // the scenario as read, every default filled in
 };
 

@@ -10,8 +10,11 @@
 //     each component of V has stayed within f S of its current value over the window
 //     [t - no_contact_time, t]: no contact impulse larger than f S times the body's mass.
 // Each component's window extremes are kept in monotonic queues (O(1) per cycle).
-// With `clear_of`, the run also waits until the caller reports the body clear of that plane.
+// With `clear_of` or `clear_of_targets`, the run also waits until the caller reports the body clear
+// (asked only when the velocity window would stop the run, since finding the pieces costs a pass
+// over the mesh).
 #include <deque>
+#include <functional>
 #include <utility>
 
 #include "krug/core/vec2.hpp"
@@ -36,7 +39,10 @@ class StopMonitor {
 
   // After every cycle (and once at the start): true when the run should stop. `clear`: the body has
   // passed the rule's clear_of plane (true when the rule has none).
-  bool observe(double time, Vec2 velocity, bool clear = true);
+  bool observe(double time, Vec2 velocity, const std::function<bool()>& clear);
+  bool observe(double time, Vec2 velocity, bool clear = true) {
+    return observe(time, velocity, [clear] { return clear; });
+  }
 
   const StopRule& rule() const { return rule_; }
   const State& state() const { return state_; }

@@ -20,9 +20,16 @@ struct Body {
   Index material = 0;
   Index node_begin = 0, node_end = 0;
   Index zone_begin = 0, zone_end = 0;
-  // Erosion on distortion (off at 0): an intact zone whose smallest altitude falls below this fraction
-  // of its initial one becomes a particle (mass and momentum exact), counted as eroded mass.
+  // Erosion (off by default): an intact zone that collapses or strains past these limits becomes a
+  // particle (mass and momentum exact), counted as eroded mass (fracture::ErosionLimits).
   double erosion_altitude_ratio = 0.0;
+  double erosion_plastic_strain = fracture::disabled;
+
+  fracture::ErosionLimits erosion() const { return {erosion_altitude_ratio, erosion_plastic_strain}; }
+  void set_erosion(const fracture::ErosionLimits& e) {
+    erosion_altitude_ratio = e.altitude_ratio;
+    erosion_plastic_strain = e.plastic_strain;
+  }
 };
 
 // A node whose velocity components are held at their initial values: zero for symmetry planes,
@@ -46,10 +53,20 @@ struct SimulationSetup {
   Controls controls;
 };
 
+// What set the last time step.
+enum class TimeStepLimit : std::uint8_t {
+  zone,             // a zone's CFL-stable step (controlling_zone())
+  growth,           // the growth limit on the previous step
+  particle_travel,  // a particle may move only a fraction of its radius per step
+  maximum,          // controls.max_time_step
+  end_time          // the last step, cut to reach the end time
+};
+
 struct Fragment {
   double mass = 0.0;   // whole body (x 2 pi in RZ)
   Vec2 velocity;       // mass-weighted
   Vec2 centroid;
+  Vec2 bbox_min, bbox_max;  // over the corners of its zones
   Index zones = 0;
 };
 
@@ -78,6 +95,7 @@ struct SimulationState {
   Particles particles;
   Ledger ledger;
   std::vector<FractureCounts> fracture_counts;
+  std::vector<double> body_plastic_work;
   std::vector<Index> zones_per_node;
   double time = 0.0;
   long cycle = 0;
@@ -113,6 +131,9 @@ class Simulation {
   double next_time_step() const { return time_step_next_; }
   double last_time_step() const { return time_step_previous_; }
   Index controlling_zone() const { return controlling_zone_; }
+  // What set dt^{n+1/2} (with zone: the controlling zone), and the body owning a zone (-1 for none).
+  TimeStepLimit time_step_limit() const { return time_step_limit_; }
+  Index body_of_zone(Index zone) const;
   // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
   double stable_time_step() const { return stable_time_step_; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
@@ -132,6 +153,8 @@ class Simulation {
   std::vector<Fragment> fragments(const Body& body) const;
   const Particles& particles() const { return particles_; }
   const FractureCounts& fracture_counts(Index body) const { return fracture_counts_[static_cast<std::size_t>(body)]; }
+  // Plastic work done in one body's zones so far (J per radian or per m; the ledger's plastic line is their sum).
+  double plastic_work(Index body) const { return body_plastic_work_[static_cast<std::size_t>(body)]; }
   bool fracture_enabled() const { return fracture_enabled_; }
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
@@ -166,6 +189,7 @@ class Simulation {
   Particles particles_;
   std::vector<fracture::FractureLimits> fracture_limits_;  // per body
   std::vector<FractureCounts> fracture_counts_;           // per body
+  std::vector<double> body_plastic_work_;                 // per body
   std::vector<Index> zones_per_node_;                     // active zones touching each node (fracture only)
   bool fracture_enabled_ = false;
   bool topology_changed_ = false;
@@ -188,6 +212,7 @@ class Simulation {
   double time_step_floor_ = 0.0;
   double stable_time_step_ = 0.0;    // from the last zone update
   Index controlling_zone_ = -1;
+  TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
 };
 
 }  // namespace krug
