@@ -23,6 +23,8 @@ import math
 import os
 import sys
 
+import numpy as np
+
 LEAD_DENSITY = 11340.0
 BULLET_RADIUS = 2.78e-3
 
@@ -239,16 +241,30 @@ def report(run_dirs, csv_path):
         first_anywhere = ";".join(f"{name}:{1e6 * onsets[(name, 'any')][0]:.2f}us@r={1e3 * onsets[(name, 'any')][2]:.2f}mm"
                                   for name in (b["name"] for b in scenario["bodies"][1:]) if (name, "any") in onsets)
         core = -core_velocity(run)
+        # The library's penetration figures (summary.json "penetration"): the largest connected piece of
+        # the bullet, the plug, the energy the plates absorbed.
+        pen = summary.get("penetration") or {}
+        piece = pen.get("residual_velocity", float("nan"))
+        plug = pen.get("plug") or {}
         rows.append({
             "run": os.path.basename(os.path.normpath(run)),
             "status": summary["status"],
             "time_us": summary["time"] * 1e6,
             "U0": u0,
+            "piece_residual": piece,
+            "piece_dU_over_U0": (u0 - piece) / u0,
+            "piece_mass_g": pen.get("residual_mass", float("nan")) * 1e3,
+            "mass_lost_g": pen.get("mass_lost", float("nan")) * 1e3,
+            "target_energy_J": pen.get("target_energy_absorbed", float("nan")),
+            "target_plastic_J": pen.get("target_plastic_work", float("nan")),
+            "perforation_time_us": (pen.get("perforation_time") or float("nan")) * 1e6,
+            "final": pen.get("final", False),
+            "library_plug_g": plug.get("mass", 0.0) * 1e3,
             "residual": residual,
             "dU_over_U0": (u0 - residual) / u0,
             "core_residual": core,
             "core_dU_over_U0": (u0 - core) / u0,
-            "perforated": tip < rear and residual > 0.0,
+            "perforated": pen["perforated"] if "perforated" in pen else (tip < rear and residual > 0.0),
             "tip_depth_mm": -tip * 1e3,
             "plug_mass_g": max((p["mass"] for p in pieces), default=0.0) * 1e3,
             "debris_fragment_momentum": debris_momentum,
@@ -270,30 +286,40 @@ def report(run_dirs, csv_path):
         for r in rows:
             f.write(",".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
     for r in rows:
-        print(f"{r['run']:40s} {r['status']:9s} U0 {r['U0']:.0f} residual {r['residual']:.1f} dU/U0 {r['dU_over_U0']:.3f} "
+        print(f"{r['run']:40s} {r['status']:9s} U0 {r['U0']:.0f} largest piece {r['piece_residual']:.1f} m/s "
+              f"(dU/U0 {r['piece_dU_over_U0']:.3f}, {r['piece_mass_g']:.3f} g) target energy {r['target_energy_J']:.2f} J; "
+              f"body {r['residual']:.1f} dU/U0 {r['dU_over_U0']:.3f} "
               f"core {r['core_residual']:.1f} perforated {r['perforated']} plug {r['plug_mass_g']:.3f} g eroded {100 * r['eroded_fraction']:.2f} % "
               f"drift {r['energy_drift']:.1e} wall {r['wall_seconds']:.0f} s\n    first damage on the axis (time @ depth fraction): "
               f"{r['first_damage_on_axis']}\n    first damage: {r['first_damage']}")
 
 
 def read_particles(vtp_path):
-    """Centres (z, r) and radii from Krug's ASCII VTK PolyData particle file."""
-    import xml.etree.ElementTree as ET
-    piece = ET.parse(vtp_path).getroot().find("PolyData/Piece")
-    arrays = {a.get("Name"): [float(v) for v in (a.text or "").split()] for a in piece.iter("DataArray")}
-    coordinates = arrays.get("coordinates", [])
-    centres = [(coordinates[3 * i], coordinates[3 * i + 1]) for i in range(len(coordinates) // 3)]
-    return centres, arrays.get("radius", [])
+    """Centres (z, r), radii and bodies of origin from Krug's VTK PolyData particle file."""
+    import meshio
+    try:
+        data = meshio.read(vtp_path)
+    except Exception:  # a file with no particles
+        return [], [], []
+    centres = [(float(p[0]), float(p[1])) for p in data.points]
+    radius = data.point_data.get("radius")
+    body = data.point_data.get("body")
+    return (centres, [] if radius is None else [float(r) for r in np.ravel(radius)],
+            [0] * len(centres) if body is None else [int(b) for b in np.ravel(body)])
 
 
-def figures(run_dir, png_path, count, field):
-    """Meshes and particles at `count` snapshot times, like the paper's Figs. 3-5."""
+def figures(run_dir, png_path, count, field, vmax=None):
+    """Meshes and particles at `count` snapshot times, like the paper's Figs. 3-5, oriented as the app's
+    own pictures: z horizontal, r up, mirrored below the axis; one view window and one colour range for
+    every moment (the colour bar on the right); particles drawn in the colour of their origin body
+    (bullet: grey, plates: black)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import PatchCollection, PolyCollection
     from matplotlib.patches import Circle
     import meshio
+    import numpy as np
     import xml.etree.ElementTree as ET
     collection = ET.parse(os.path.join(run_dir, "run.pvd")).getroot().find("Collection")
     meshes, particles = {}, {}
@@ -302,28 +328,45 @@ def figures(run_dir, png_path, count, field):
         (meshes if ds.get("part") == "0" else particles)[t] = os.path.join(run_dir, ds.get("file"))
     times = sorted(meshes)
     picks = [times[round(i * (len(times) - 1) / max(count - 1, 1))] for i in range(count)]
-    fig, axes = plt.subplots(1, count, figsize=(3.2 * count, 4.2), sharey=True)
-    for ax, t in zip(axes, picks):
-        mesh = meshio.read(meshes[t])
+    data = {t: meshio.read(meshes[t]) for t in picks}
+    # One window for all moments: the union of the pictured meshes, clipped to 10 mm behind the rear
+    # face and 5 bullet radii off the axis (the plates' graded outer parts carry nothing to see).
+    scenario = json.load(open(os.path.join(run_dir, "scenario.resolved.json")))
+    bullet_z = [m.points[m.point_data["body"].ravel() == 0, 0] for m in data.values()]
+    z_lo = min(float(z.min()) for z in bullet_z if z.size) * 1e3 - 1.0
+    z_hi = max(float(z.max()) for z in bullet_z if z.size) * 1e3 + 1.0
+    r_hi = 3.0 * BULLET_RADIUS * 1e3
+    if vmax is None:
+        vmax = 1.0 if field == "damaged" else 2.0 if field == "equivalent_plastic_strain" else max(
+            float(np.nanmax(m.cell_data_dict[field]["quad"])) for m in data.values())
+    fig, axes = plt.subplots(count, 1, figsize=(6.4, 1.75 * count), sharex=True, constrained_layout=True)
+    for ax, t in zip(np.atleast_1d(axes), picks):
+        mesh = data[t]
         quads = mesh.cells_dict["quad"]
-        xy = mesh.points[:, [1, 0]] * 1e3  # r horizontal, z vertical, mm
         values = mesh.cell_data_dict[field]["quad"].ravel()
-        poly = PolyCollection(xy[quads], array=values, cmap="viridis", edgecolors="k", linewidths=0.05)
-        poly.set_clim(0, max(1e-12, float(values.max())) if field != "damaged" else 1)
-        ax.add_collection(poly)
+        for sign in (1.0, -1.0):
+            xy = np.column_stack([mesh.points[:, 0], sign * mesh.points[:, 1]]) * 1e3  # z right, r up, mm
+            poly = PolyCollection(xy[quads], array=values, cmap="viridis", edgecolors="k", linewidths=0.03)
+            poly.set_clim(0.0, vmax)
+            ax.add_collection(poly)
         if t in particles:
-            centres, radii = read_particles(particles[t])
-            if centres:
-                circles = [Circle((c[1] * 1e3, c[0] * 1e3), r * 1e3) for c, r in zip(centres, radii)]
-                ax.add_collection(PatchCollection(circles, facecolor="tab:red", edgecolor="none", alpha=0.8))
-        ax.set_xlim(0, 9)
-        ax.set_ylim(-16, 8)
+            centres, radii, origin = read_particles(particles[t])
+            circles = [Circle((c[0] * 1e3, sign * c[1] * 1e3), r * 1e3) for sign in (1.0, -1.0)
+                       for c, r in zip(centres, radii)]
+            colours = ["0.55" if o == 0 else "k" for _ in (1.0, -1.0) for o in origin]
+            if circles:
+                ax.add_collection(PatchCollection(circles, facecolor=colours, edgecolor="none", alpha=0.9))
+        ax.axhline(0.0, color="0.3", lw=0.5, ls="--")
+        ax.set_xlim(z_lo, z_hi)
+        ax.set_ylim(-r_hi, r_hi)
         ax.set_aspect("equal")
-        ax.set_title(f"t = {t * 1e6:.1f} us", fontsize=9)
-        ax.set_xlabel("r (mm)")
-    axes[0].set_ylabel("z (mm)")
-    fig.suptitle(f"{os.path.basename(os.path.normpath(run_dir))}: {field}; particles red", fontsize=10)
-    fig.tight_layout()
+        ax.set_ylabel("r (mm)")
+        ax.text(0.01, 0.92, f"t = {t * 1e6:.1f} us", transform=ax.transAxes, fontsize=9, va="top")
+    np.atleast_1d(axes)[-1].set_xlabel("z (mm); the bullet moves to the left")
+    bar = fig.colorbar(poly, ax=axes, shrink=0.6, pad=0.01, extend="max" if field != "damaged" else "neither")
+    bar.set_label({"equivalent_plastic_strain": "equivalent plastic strain (-)", "damaged": "damaged (0/1)"}.get(field, field))
+    fig.suptitle(f"{os.path.basename(os.path.normpath(run_dir))}: {field}; particles: lead grey, aluminium black",
+                 fontsize=10)
     fig.savefig(png_path, dpi=110)
     print(png_path)
 
@@ -361,11 +404,12 @@ def main():
     fg.add_argument("png")
     fg.add_argument("--count", type=int, default=4)
     fg.add_argument("--field", default="equivalent_plastic_strain")
+    fg.add_argument("--vmax", type=float, default=None, help="top of the colour range (plastic strain: 2)")
     args = parser.parse_args()
     if args.command == "report":
         return report(args.runs, args.csv)
     if args.command == "figures":
-        return figures(args.run, args.png, args.count, args.field)
+        return figures(args.run, args.png, args.count, args.field, args.vmax)
     os.makedirs(args.outdir, exist_ok=True)
     name = args.name or f"{args.kind}_{args.thickness:g}mm_{args.mass:g}g"
     path = os.path.join(args.outdir, name + ".json")

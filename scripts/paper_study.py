@@ -1,14 +1,17 @@
 #!/usr/bin/python3
 """The validation study of the paper's case (docs/validation.md), generated, run and tabulated.
 
-    scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 5]
-                                  [--groups mesh,default,fig6,velocity,sensitivity]
+    scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 10]
+                                  [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity]
 
 Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
 directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
 interrupted run to repeat it). Per group,
 OUTDIR/GROUP.csv holds the report rows (scripts/paper_case.py report); OUTDIR/fig6.png plots the
 Fig. 6 group. Groups:
+  converged    2.6 g, the three 3 mm targets at 5, 10 and 20 zones per mm (the mesh study of the headline)
+  ordering     2.6 g, monolithic and layered at 10 zones per mm: the default numerics, the paper's summation
+               contact, and conversion by loosening alone, each with eps_* = 0.3, 0.4, 0.5
   mesh         both bullets, the three 3 mm targets at 5, 7 and 10 zones per mm
   default      11 g bullet, the three 3 mm targets at 10 zones per mm (examples/paper/)
   fig6         dU/U0 against H = 1..5 mm, three kinds, 2.6 g and 11 g (n 1-mm plates in contact, one
@@ -70,6 +73,24 @@ def cases(groups, zones):
         ]
         for name, options in variants:
             out.append(("sensitivity", f"sensitivity_{name}", base + options))
+    if "ordering" in groups:
+        # A: the target's numerics as the paper's (2.6 g, 10 zones per mm): the paper's summation contact,
+        # or conversion by loosening alone (the altitude rules f_h and f_i made inactive), each crossed with
+        # the elongation limit; the default numerics with the same limits beside them.
+        loosening_only = ["--altitude-ratio", "1e-6", "--interior-altitude-ratio", "1e-6"]
+        for kind in ("monolithic", "layered"):
+            for eps in ("0.3", "0.4", "0.5"):
+                base = ["--mass", "2.6", "--kind", kind, "--zones-per-mm", "10", "--elongation", eps]
+                out.append(("ordering", f"ordering_{kind}_default_eps{eps}", base))
+                out.append(("ordering", f"ordering_{kind}_summation_eps{eps}", base + ["--contact-method", "summation"]))
+                out.append(("ordering", f"ordering_{kind}_loosening_eps{eps}", base + loosening_only))
+    if "converged" in groups:
+        # B: the three 3 mm targets at 5, 10 and 20 zones per mm, default numerics.
+        for mass in ("2.6",):
+            for z in (5, 10, 20):
+                for kind in ("monolithic", "layered", "spaced"):
+                    out.append(("converged", f"converged_{kind}_{mass}g_z{z}",
+                                ["--mass", mass, "--kind", kind, "--zones-per-mm", str(z)]))
     if "fig6" in groups:
         for mass in ("2.6", "11"):
             for h in (1, 2, 3, 4, 5):
@@ -127,8 +148,8 @@ def main():
     parser.add_argument("outdir")
     parser.add_argument("--krug", default=os.path.join(HERE, "..", "build", "apps", "krug", "krug"))
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--zones-per-mm", type=int, default=5)
-    parser.add_argument("--groups", default="mesh,default,fig6,velocity,sensitivity")
+    parser.add_argument("--zones-per-mm", type=int, default=10)
+    parser.add_argument("--groups", default="converged,ordering,fig6")
     args = parser.parse_args()
     groups = args.groups.split(",")
     for sub in ("scenarios", "runs", "logs"):

@@ -260,6 +260,8 @@ TEST_CASE("summary.json of completed, failed and fracturing runs follows docs/su
       {e1, [](Json& d) { d["controls"]["time_step_floor"] = 1e-6; }, "failed"},
       {fs::path(KRUG_APP_TEST_DATA_DIR) / "fracture_plate.json", [](Json&) {}, "completed"},
       {fs::path(KRUG_EXAMPLES_DIR) / "verification" / "taylor_bar.json", [](Json& d) { d["end_time"] = 2e-6; }, "completed"},
+      // A penetration block (its summary block), stopped by the stop rule once the flyer has stopped.
+      {e1, [](Json& d) { d["penetration"] = {{"projectile", "flyer"}}; d["stop"] = {{"no_contact_time", 5e-7}}; }, "completed"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     INFO(cases[i].file.filename().string() << " case " << i);
@@ -271,6 +273,7 @@ TEST_CASE("summary.json of completed, failed and fracturing runs follows docs/su
     (void)krug::io::run_scenario(krug::io::parse_scenario(document.dump(), cases[i].file.string()), options);
     const Json summary = krug::test::read_json(dir / "summary.json");
     CHECK(summary["status"] == cases[i].status);
+    CHECK(summary.contains("penetration") == document.contains("penetration"));
     const auto errors = contract.validate(summary);
     CHECK(errors == std::vector<std::string>{});
   }
