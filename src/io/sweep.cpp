@@ -242,6 +242,7 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
 void write_sweep_table(const std::filesystem::path& directory, const std::vector<SweepParameter>& parameters,
                        const std::vector<SweepVariant>& variants) {
   std::vector<Json> summaries;
+  bool penetration = false;
   std::vector<std::string> bodies;  // in order of first appearance
   std::vector<std::string> axes = {"x", "y"};
   for (const SweepVariant& variant : variants) {
@@ -265,8 +266,18 @@ void write_sweep_table(const std::filesystem::path& directory, const std::vector
       }
     }
     summaries.push_back(summary);
+    penetration = penetration || (summary.is_object() && summary.contains("penetration"));
   }
+  // Penetration columns: the summaries' "penetration" block (docs/outputs.md), when any variant has one.
+  const std::vector<std::vector<const char*>> penetration_columns = {
+      {"perforated"}, {"perforation_time"}, {"residual_velocity"}, {"residual_mass"}, {"mass_lost"},
+      {"eroded_mass"}, {"plug", "mass"}, {"plug", "velocity"}, {"target_energy_absorbed"}, {"final"}};
   std::vector<std::string> header = {"variant"};
+  auto column_name = [](const std::vector<const char*>& path) {
+    std::string name = "penetration";
+    for (const char* key : path) name += std::string("_") + key;
+    return name;
+  };
   for (const SweepParameter& p : parameters) header.push_back(p.path);
   for (const char* column : {"status", "stopped_by", "time", "cycles", "wall_seconds", "energy_drift", "mass_error",
                              "particles"}) {
@@ -276,6 +287,9 @@ void write_sweep_table(const std::filesystem::path& directory, const std::vector
     for (const std::string& column : {"v" + axes[0], "v" + axes[1], std::string("mass"), std::string("zones")}) {
       header.push_back(fmt::format("{}_{}", b, column));
     }
+  }
+  if (penetration) {
+    for (const auto& path : penetration_columns) header.push_back(column_name(path));
   }
   header.emplace_back("message");
   std::string table;
@@ -319,6 +333,13 @@ void write_sweep_table(const std::filesystem::path& directory, const std::vector
       cells.push_back(csv_number(velocity[1]));
       cells.push_back(csv_number(body.is_object() && body.contains("mass") ? body["mass"] : Json()));
       cells.push_back(csv_number(body.is_object() && body.contains("zones") ? body["zones"] : Json()));
+    }
+    if (penetration) {
+      for (const auto& path : penetration_columns) {
+        const Json* at = s.is_object() && s.contains("penetration") ? &s["penetration"] : nullptr;
+        for (const char* key : path) at = at && at->is_object() && at->contains(key) ? &(*at)[key] : nullptr;
+        cells.push_back(at ? csv_number(*at) : std::string());
+      }
     }
     cells.push_back(csv_number(get({"message"})));
     add_row(cells);

@@ -152,3 +152,32 @@ TEST_CASE("a sweep with a failing variant exits 1 and says so in the table", "[a
   CHECK(rows[1].at("status") == "completed");
   CHECK(rows[1].at("output") == R"({"plots":false,"pictures":{"enabled":false}})");  // as given
 }
+
+TEST_CASE("a sweep of a penetration scenario tabulates the penetration block", "[app][sweep][penetration]") {
+  if (!krug::test::have_app()) return;
+  // E1 with the flyer named as the projectile: it stops inside the target (docs/outputs.md, Penetration).
+  krug::test::Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  document["penetration"] = {{"projectile", "flyer"}};
+  document["stop"] = {{"no_contact_time", 5e-7}};
+  document["output"] = {{"plots", false}, {"pictures", {{"enabled", false}}}};
+  const fs::path dir = krug::test::scratch("sweep_penetration");
+  krug::test::write_text(dir / "slab_penetration.json", document.dump(2));
+  const auto result = krug::test::run_krug(
+      {"sweep", (dir / "slab_penetration.json").string(), "--set", "bodies[0].initial.velocity[0]=10,20", "--jobs", "2",
+       "--out", (dir / "out").string()},
+      dir / "sweep.log");
+  INFO(result.output);
+  REQUIRE(result.exit_code == 0);
+  const auto rows = read_table(dir / "out" / "sweep.csv");
+  REQUIRE(rows.size() == 2);
+  for (const auto& row : rows) {
+    INFO(row.at("variant"));
+    CHECK(row.at("stopped_by") == "stop rule");
+    CHECK(row.at("penetration_perforated") == "false");
+    CHECK(row.at("penetration_final") == "true");
+    CHECK(row.at("penetration_perforation_time").empty());
+    CHECK(row.at("penetration_plug_mass").empty());
+    CHECK(std::abs(std::stod(row.at("penetration_residual_velocity"))) < 0.5);
+    CHECK(std::stod(row.at("penetration_target_energy_absorbed")) > 0.0);
+  }
+}
