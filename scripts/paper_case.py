@@ -13,6 +13,10 @@ validation study comes from one definition (docs/validation.md):
                                           [--contact-method gauss_seidel|summation]
                                           [--name NAME]
 
+    scripts/paper_case.py report RUN... --csv FILE          (one row per run)
+    scripts/paper_case.py figures RUN PNG [--count N] [--field F] [--vmax V]
+    scripts/paper_case.py velocity-history RUN... --csv FILE (core and body velocity per snapshot)
+
 Units in the options are mm, g, m/s; the scenarios are SI. Facts (paper-case.md): lead rho0 11340,
 K 50 GPa, mu 5.7 GPa, Y0 0.03 GPa, no fracture; 6061-T6 rho0 2700, K 73 GPa, mu 24.6 GPa, Y0 0.28 GPa,
 elongation criterion eps_* = 0.4, chi_* = 0.03; bullet radius 2.78 mm, hemispherical nose.
@@ -294,6 +298,32 @@ def report(run_dirs, csv_path):
               f"{r['first_damage_on_axis']}\n    first damage: {r['first_damage']}")
 
 
+def velocity_history(run_dirs, csv_path):
+    """Per snapshot of each run: the axial velocity of the bullet's core (its cells within the initial
+    bullet radius) and of the whole bullet body (all its cells), mass-weighted, towards the target.
+    Runs with the same end time have their snapshots at the same moments, so runs with and without
+    lead erosion compare moment by moment."""
+    import meshio
+    import xml.etree.ElementTree as ET
+    with open(csv_path, "w") as out:
+        out.write("run,time_us,core_velocity,body_velocity,bullet_cells\n")
+        for run in run_dirs:
+            collection = ET.parse(os.path.join(run, "run.pvd")).getroot().find("Collection")
+            for ds in collection:
+                if ds.get("part") != "0":
+                    continue
+                mesh = meshio.read(os.path.join(run, ds.get("file")))
+                quads, centroid, mass = cell_geometry(mesh)
+                body = mesh.cell_data_dict["body"]["quad"].ravel()
+                velocity_z = mesh.point_data["velocity"][:, 0][quads].mean(axis=1)
+                bullet = body == 0
+                core = bullet & (centroid[:, 1] < BULLET_RADIUS)
+                out.write(f"{os.path.basename(os.path.normpath(run))},{float(ds.get('timestep')) * 1e6:.3f},"
+                          f"{-(mass[core] * velocity_z[core]).sum() / mass[core].sum():.3f},"
+                          f"{-(mass[bullet] * velocity_z[bullet]).sum() / mass[bullet].sum():.3f},{int(bullet.sum())}\n")
+    print(csv_path)
+
+
 def read_particles(vtp_path):
     """Centres (z, r), radii and bodies of origin from Krug's VTK PolyData particle file."""
     import meshio
@@ -405,7 +435,12 @@ def main():
     fg.add_argument("--count", type=int, default=4)
     fg.add_argument("--field", default="equivalent_plastic_strain")
     fg.add_argument("--vmax", type=float, default=None, help="top of the colour range (plastic strain: 2)")
+    vh = sub.add_parser("velocity-history")
+    vh.add_argument("runs", nargs="+")
+    vh.add_argument("--csv", required=True)
     args = parser.parse_args()
+    if args.command == "velocity-history":
+        return velocity_history(args.runs, args.csv)
     if args.command == "report":
         return report(args.runs, args.csv)
     if args.command == "figures":

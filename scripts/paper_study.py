@@ -122,21 +122,38 @@ def run_one(krug, outdir, name):
     return name, f"exit {code}", time.time() - start
 
 
+def mesh_spread(outdir):
+    """Per target kind: half the spread (max - min) of the largest piece's dU/U0 over the resolutions of
+    the converged group (2.6 g, H = 3 mm), the error bar of the Fig. 6 points; {} without that group."""
+    path = os.path.join(outdir, "converged.csv")
+    if not os.path.exists(path):
+        return {}
+    values = {}
+    for r in csv.DictReader(open(path)):
+        kind = r["run"].split("_")[1]
+        values.setdefault(kind, []).append(float(r["piece_dU_over_U0"]))
+    return {k: 0.5 * (max(v) - min(v)) for k, v in values.items()}
+
+
 def plot_fig6(outdir):
+    """dU/U0 of the bullet's largest piece against H, with the 2.6 g mesh study's half-spread at 3 mm
+    as error bars (the same bar for both masses and every H: the only mesh study made)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     rows = list(csv.DictReader(open(os.path.join(outdir, "fig6.csv"))))
+    spread = mesh_spread(outdir)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
     for ax, mass in zip(axes, ("2.6g", "11g")):
-        for kind, marker in (("layered", "s"), ("monolithic", "o"), ("spaced", "^")):
-            points = sorted((int(r["run"].split("_H")[1].split("_")[0]), float(r["dU_over_U0"]))
+        for kind, marker, shift in (("layered", "s", -0.08), ("monolithic", "o", 0.0), ("spaced", "^", 0.08)):
+            points = sorted((int(r["run"].split("_H")[1].split("_")[0]), float(r["piece_dU_over_U0"]))
                             for r in rows if r["run"].startswith(f"fig6_{kind}_") and r["run"].endswith(mass))
             if points:
-                ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, label=kind)
+                ax.errorbar([p[0] + shift for p in points], [p[1] for p in points], yerr=spread.get(kind, 0.0),
+                            marker=marker, capsize=3, label=kind)
         ax.set_xlabel("total thickness H (mm)")
-        ax.set_ylabel("dU / U0 (bullet body)")
-        ax.set_title(f"{mass.replace('g', ' g')} lead bullet, 355 m/s")
+        ax.set_ylabel("dU / U0 (bullet's largest piece)")
+        ax.set_title(f"{mass.replace('g', ' g')} lead bullet, 355 m/s, 10 zones per mm")
         ax.grid(alpha=0.3)
         ax.legend()
     fig.tight_layout()

@@ -114,6 +114,7 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     result.stopped_by = "failure";
   }
   result.wall_seconds = elapsed();
+  if (options.on_finish) options.on_finish(simulation);
   if (loop.penetration) {
     result.penetration = report_penetration(simulation, *scenario.penetration, *loop.penetration);
     result.penetration->final = result.stopped_by == "stop rule" && loop.stop && loop.stop->rule().clear_of_targets;

@@ -18,6 +18,8 @@ struct RunOptions {
   // Set from outside (a signal handler) to interrupt: the loop writes DIR/checkpoint.bin and ends the
   // run with status "failed", message "interrupted", stopped_by "interrupted".
   const std::atomic<bool>* interrupt = nullptr;
+  // Called once with the final state (however the run ended), before the final outputs are written.
+  std::function<void(const Simulation&)> on_finish;
   // Pictures of the states (the app's PNG writer); none when empty.
   PictureHook picture;
 };
