@@ -369,7 +369,9 @@ def figures(run_dir, png_path, count, field, vmax=None):
     if vmax is None:
         vmax = 1.0 if field == "damaged" else 2.0 if field == "equivalent_plastic_strain" else max(
             float(np.nanmax(m.cell_data_dict[field]["quad"])) for m in data.values())
-    fig, axes = plt.subplots(count, 1, figsize=(6.4, 1.75 * count), sharex=True, constrained_layout=True)
+    panel = 1.75  # inches per moment; the width follows the window's aspect, plus the colour bar
+    width = panel * (z_hi - z_lo) / (2.0 * r_hi) + 2.2
+    fig, axes = plt.subplots(count, 1, figsize=(width, panel * count), sharex=True, constrained_layout=True)
     for ax, t in zip(np.atleast_1d(axes), picks):
         mesh = data[t]
         quads = mesh.cells_dict["quad"]
@@ -395,8 +397,8 @@ def figures(run_dir, png_path, count, field, vmax=None):
     np.atleast_1d(axes)[-1].set_xlabel("z (mm); the bullet moves to the left")
     bar = fig.colorbar(poly, ax=axes, shrink=0.6, pad=0.01, extend="max" if field != "damaged" else "neither")
     bar.set_label({"equivalent_plastic_strain": "equivalent plastic strain (-)", "damaged": "damaged (0/1)"}.get(field, field))
-    fig.suptitle(f"{os.path.basename(os.path.normpath(run_dir))}: {field}; particles: lead grey, aluminium black",
-                 fontsize=10)
+    fig.suptitle(f"{os.path.basename(os.path.normpath(run_dir))}\n{field}; particles: lead grey, aluminium black",
+                 fontsize=9)
     fig.savefig(png_path, dpi=110)
     print(png_path)
 

@@ -11,6 +11,7 @@
 // Then the geometry of perforation on a flyer that starts beyond the target and flies away.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "krug/core/error.hpp"
@@ -126,4 +127,37 @@ TEST_CASE("erosion limits: a material's block is every body's default, a body's 
   CHECK(bodies[0].erosion().plastic_strain == 3.0);
   CHECK(bodies[1].erosion().altitude_ratio == 0.2);   // kept from the material
   CHECK(bodies[1].erosion().plastic_strain == 1.5);   // overridden
+}
+
+TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and the ledgers still close", "[app][penetration]") {
+  // examples/verification/taylor_bar.json (copper at 227 m/s on a rigid wall) with erosion at an
+  // equivalent plastic strain of 0.5: the foot, where strains reach beyond 1, erodes; everything the
+  // eroded zones carried is booked on the particles and the converted line.
+  Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "taylor_bar.json");
+  document["materials"]["copper"]["erosion"] = {{"plastic_strain", 0.5}};
+  document["end_time"] = 2e-5;
+  const auto scenario = krug::io::parse_scenario(document.dump(), "taylor_erosion.json");
+  const fs::path dir = krug::test::scratch("taylor_erosion");
+  krug::io::RunOptions options;
+  options.output_directory = dir;
+  double largest_strain = 0.0;  // of the zones still in the mesh, after every cycle
+  options.on_cycle = [&](const krug::Simulation& s, double) {
+    for (krug::Index z = 0; z < s.mesh().zones.size(); ++z) {
+      if (s.mesh().zones.active[z]) largest_strain = std::max(largest_strain, s.mesh().zones.plastic_strain[z]);
+    }
+    return true;
+  };
+  const auto result = krug::io::run_scenario(scenario, options);
+  REQUIRE(result.status == krug::io::RunStatus::completed);
+  const Json summary = krug::test::read_json(dir / "summary.json");
+  const Json& bar = summary["bodies"]["bar"]["fracture"];
+  INFO("eroded zones " << bar["eroded_zones"] << ", eroded mass " << bar["eroded_mass"]);
+  CHECK(bar["eroded_zones"].get<long>() > 0);
+  CHECK(largest_strain <= 0.5);  // no zone stays in the mesh beyond the limit after its step
+  const Json& ledger = summary["ledger"];
+  // Mass: the particles carry exactly what left the mesh.
+  CHECK(summary["particles"]["mass"].get<double>() == Approx(bar["eroded_mass"].get<double>()).epsilon(1e-12));
+  CHECK(ledger["mass"]["relative_error"].get<double>() < 1e-13);
+  CHECK(ledger["energy"]["relative_drift"].get<double>() < 1e-12);
+  CHECK(ledger["energy"]["converted"].get<double>() > 0.0);
 }

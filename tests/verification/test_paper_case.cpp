@@ -168,21 +168,23 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
 
 }  // namespace
 
-// The mesh study (docs/validation.md, "Mesh"; scripts/paper_study.py, group mesh): dU/U0 of the
-// bullet body at 5, 7 and 10 zones per mm. Band: their mean plus or minus their spread (max - min).
-//   monolithic 0.2415 0.2457 0.2481   mean 0.2451  spread 0.0067
-//   layered    0.2283 0.2057 0.1959   mean 0.2100  spread 0.0324
-//   spaced     0.1812 0.1821 0.1560   mean 0.1731  spread 0.0261
-// Orderings asserted: only those that hold at every level with gaps above the spreads: spaced below
-// monolithic (gaps 0.060, 0.064, 0.092), so the monolithic loss lies above the whole spaced band.
-// Not asserted: spaced below layered (gaps 0.047, 0.024, 0.040: at 7 zones per mm inside the spaced
-// spread) and monolithic ahead of layered (0.013, 0.040, 0.052: at 5 zones per mm inside the layered
-// spread). (Before the viscosity fix F8 of docs/verification.md: 0.2277 0.2301 0.2491, 0.2271 0.2196
-// 0.1923, 0.1752 0.1771 0.1628.)
+// The mesh study (docs/validation.md, "Mesh"; scripts/paper_study.py, group converged): dU/U0 of the
+// bullet's largest piece at 5, 10 and 20 zones per mm, lead erosion 0.1, the clear-the-plates stop.
+// Band: their mean plus or minus their spread (max - min).
+//   monolithic 0.1410 0.1428 0.1321   mean 0.1386  spread 0.0107
+//   layered    0.2223 0.1671 0.1618   mean 0.1837  spread 0.0605
+//   spaced     0.1812 0.1499 0.1503   mean 0.1605  spread 0.0313
+// Ordering asserted: the one that holds at every level with gaps above the spreads of 10 and 20 zones
+// per mm: layered ahead of monolithic (gaps 0.081, 0.024, 0.030 against spreads of 0.011 and 0.005 at
+// 10 and 20 zones per mm), so the layered loss lies above the whole monolithic band. Not asserted:
+// spaced against either. It is above monolithic at every level (by 0.040, 0.007, 0.018), but at 10
+// zones per mm by less than the monolithic spread; below layered at every level (by 0.041, 0.017,
+// 0.011), by less than the layered spread at 5 zones per mm.
+constexpr double monolithic_centre = 0.1386, monolithic_spread = 0.0107;
+
 TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("monolithic_3mm_2.6g_z5.json");
-  check_common(run, "paper: monolithic 3 mm", 0.2451, 0.0067);
-  CHECK(loss_of(run) > SPACED_TOP);
+  check_common(run, "paper: monolithic 3 mm", monolithic_centre, monolithic_spread);
   // The paper: "a plug somewhat thinner than the plate forms". The plate leaves at least two pieces,
   // and its fast zones on the axis span less than the 3 mm plate but more than half of it.
   CHECK(run.fragments.at(0) >= 2);
@@ -195,7 +197,8 @@ TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones
 
 TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("layered_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: layered 3 x 1 mm", 0.2100, 0.0324);
+  check_common(run, "paper: layered 3 x 1 mm", 0.1837, 0.0605);
+  CHECK(loss_of(run) > monolithic_centre + monolithic_spread);  // the paper's claim: layered is the more resistant
   // The paper: "the front layer fractures first, the rear layers bend strongly and separate, and their
   // fracture starts on the axis". Damage in order front to rear; in the two rear plates the first
   // damage of the plate lies under the bullet (within its radius, as for the monolithic plate).
@@ -217,7 +220,7 @@ TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zo
 
 TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: spaced 3 x 1 mm", 0.1731, 0.0261);
+  check_common(run, "paper: spaced 3 x 1 mm", 0.1605, 0.0313);
   // The paper: "plugging of each plate in turn". Damage in order, and every plate in pieces.
   REQUIRE(run.first_damage.size() == 3);
   CHECK(run.first_damage[0].time < run.first_damage[1].time);
