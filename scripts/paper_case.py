@@ -140,7 +140,8 @@ def scenario(args):
         "controls": {"fracture": {"particles_per_zone": args.particles, "altitude_ratio": args.altitude_ratio,
                                   "interior_altitude_ratio": args.interior_altitude_ratio}},
         "penetration": {"projectile": "bullet"},
-        "output": {"snapshot_interval": end_time / 20.0, "history_interval": end_time / 2000.0},
+        "output": {"snapshot_interval": end_time / 20.0, "history_interval": end_time / 2000.0,
+                   "pictures": {"field": "equivalent_plastic_strain"}},
         "stop": stop,
     }
 
