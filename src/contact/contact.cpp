@@ -14,8 +14,7 @@ constexpr double end_slack = 1e-3;
 constexpr double start_depth = 0.25;
 // A particle's candidates are searched over its swept path widened by this fraction of its radius
 // beyond its size: the reactions change its velocity during the solve, and a pair the search missed
-// is never seen (E8's particles in a box: overlaps 1.2e-3 of a radius appeared in one step, with the
-// solve converged on every candidate it had).
+// is never seen (docs/verification.md, E8).
 constexpr double particle_search_margin = 0.1;
 
 }  // namespace

@@ -13,6 +13,10 @@
 // axisymmetric geometry (1 in planar strain). Once any limit is exceeded the zone is damaged for
 // good: it resists only volumetric compression (s = 0, p = max(p, 0)). Loosening chi = 1 - rho/rho0
 // for rho < rho0 measures how far it may open; chi > chi_* (or a collapsed altitude) means fully fractured.
+// The paper writes the limits on absolute values; here eps_1, sigma_1 and gamma_1 are compared signed,
+// as the largest stretch, the largest principal stress and the largest shear: a zone in uniform
+// compression (every stretch below 1) never fails by elongation, and compression fails only through
+// the separate compressive limit.
 #include <algorithm>
 #include <array>
 #include <cmath>

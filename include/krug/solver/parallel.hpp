@@ -29,9 +29,8 @@ inline Index block_count(Index begin, Index end) {
 }
 
 // Fewer blocks than this run on the calling thread alone: starting the other threads and waiting for
-// them at the end of the loop costs more than they save on a small loop. (Any loop on two threads is
-// slow when another process holds a core: a paper case ran 8 times slower on two threads than on one
-// while the other core was busy. Hence the default of one thread.)
+// them at the end of the loop costs more than they save on a small loop. Threads pay only on free
+// cores, hence the default of one thread (docs/performance.md, "Two threads").
 inline constexpr Index min_parallel_blocks = 2;
 
 // Calls body(block, first, last) for every block of [begin, end), on up to `threads` threads.
