@@ -127,9 +127,16 @@ int run(const Arguments& args) {
       last_report = elapsed;
       const double fraction = s.time() / s.controls().end_time;
       const double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-      std::fprintf(stderr, "\rkrug: t = %.4e s (%5.1f %%)  cycle %ld  dt = %.3e s  energy drift %.2e  %.0f s elapsed, ~%.0f s left   ",
-                   s.time(), 100.0 * fraction, s.cycle(), s.last_time_step(),
-                   s.ledger().relative_energy_drift(), elapsed, remaining);
+      if (scenario.stop) {
+        // The stop rule ends the run when its answer is final: the end time is only a bound, and a
+        // percentage or time left against it would mislead.
+        std::fprintf(stderr, "\rkrug: t = %.4e s  cycle %ld  dt = %.3e s  energy drift %.2e  %.0f s elapsed, until the stop rule   ",
+                     s.time(), s.cycle(), s.last_time_step(), s.ledger().relative_energy_drift(), elapsed);
+      } else {
+        std::fprintf(stderr, "\rkrug: t = %.4e s (%5.1f %%)  cycle %ld  dt = %.3e s  energy drift %.2e  %.0f s elapsed, ~%.0f s left   ",
+                     s.time(), 100.0 * fraction, s.cycle(), s.last_time_step(),
+                     s.ledger().relative_energy_drift(), elapsed, remaining);
+      }
       if (args.verbose) std::fputc('\n', stderr);
     }
     return true;
