@@ -6,8 +6,11 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <type_traits>
+#include <utility>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -32,6 +35,41 @@ AxisNames axis_names(GeometryKind g) {
   return {std::string(axis_name(g, 0)), std::string(axis_name(g, 1))};
 }
 
+// One model of a variant (Eos, Strength) from its block: "model" names it (the alternatives' `name`s, in
+// the variant's order; `fallback`: the model when the key is absent), and its parameters are read as its
+// header describes them (krug/material/parameters.hpp). A model's `reference_density` is the material's.
+template <class Model>
+Model read_model_parameters(JsonObject& spec, double reference_density) {
+  Model model{};
+  for (const ModelParameter<Model>& p : parameters(std::type_identity<Model>{})) {
+    const Range range{p.minimum, p.maximum, p.minimum_exclusive};
+    model.*(p.member) = p.required ? spec.number(p.key, range) : spec.number(p.key, p.fallback, range);
+  }
+  if constexpr (requires { model.reference_density; }) model.reference_density = reference_density;
+  return model;
+}
+
+template <class Variant>
+Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, double reference_density) {
+  constexpr std::size_t count = std::variant_size_v<Variant>;
+  const std::vector<std::string> names = [] {
+    std::vector<std::string> list;
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (list.emplace_back(std::variant_alternative_t<I, Variant>::name), ...);
+    }(std::make_index_sequence<count>{});
+    return list;
+  }();
+  const std::string chosen = fallback ? spec.choice("model", names, *fallback) : spec.choice("model", names);
+  Variant result;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (void)((chosen == std::variant_alternative_t<I, Variant>::name
+                ? (result = read_model_parameters<std::variant_alternative_t<I, Variant>>(spec, reference_density), true)
+                : false) ||
+           ...);
+  }(std::make_index_sequence<count>{});
+  return result;
+}
+
 // An erosion block {"altitude_ratio", "plastic_strain"}; keys not given keep the values of `base`.
 fracture::ErosionLimits read_erosion(JsonObject spec, fracture::ErosionLimits base) {
   base.altitude_ratio = spec.number("altitude_ratio", base.altitude_ratio, Range::between(0.0, 1.0));
@@ -50,47 +88,10 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
   m.name = name;
   m.reference_density = spec.number("density", Range::positive());
   JsonObject eos = spec.object("eos");
-  const std::string model = eos.choice("model", {"ideal_gas", "linear", "mie_gruneisen"});
-  if (model == "ideal_gas") {
-    const double gamma = eos.number("gamma", Range{1.0, 10.0, true});
-    m.eos = IdealGas{gamma};
-  } else if (model == "linear") {
-    m.eos = LinearBulk{eos.number("bulk_modulus", Range::positive()), m.reference_density};
-  } else {
-    MieGruneisen mg;
-    mg.reference_density = m.reference_density;
-    mg.bulk_sound_speed = eos.number("bulk_sound_speed", Range::positive());
-    mg.hugoniot_slope = eos.number("hugoniot_slope", Range::between(0.0, 10.0));
-    mg.gruneisen = eos.number("gruneisen", Range::between(0.0, 10.0));
-    m.eos = mg;
-  }
+  m.eos = read_model<Eos>(eos, std::nullopt, m.reference_density);
   eos.finish();
   JsonObject strength = spec.object_or_empty("strength");
-  const std::string strength_model = strength.choice(
-      "model", {"none", "elastic", "perfectly_plastic", "linear_hardening", "johnson_cook"}, "none");
-  if (strength_model == "elastic") {
-    m.strength = Elastic{strength.number("shear_modulus", Range::positive())};
-  } else if (strength_model == "perfectly_plastic") {
-    const double mu = strength.number("shear_modulus", Range::positive());
-    m.strength = PerfectlyPlastic{mu, strength.number("yield_stress", Range::non_negative())};
-  } else if (strength_model == "linear_hardening") {
-    const double mu = strength.number("shear_modulus", Range::positive());
-    const double y0 = strength.number("yield_stress", Range::non_negative());
-    m.strength = LinearHardening{mu, y0, strength.number("hardening_modulus", Range::non_negative())};
-  } else if (strength_model == "johnson_cook") {
-    JohnsonCook jc;
-    jc.shear_modulus = strength.number("shear_modulus", Range::positive());
-    jc.yield_stress = strength.number("yield_stress", Range::non_negative());
-    jc.hardening_coefficient = strength.number("hardening_coefficient", 0.0, Range::non_negative());
-    jc.hardening_exponent = strength.number("hardening_exponent", 1.0, Range::positive());
-    jc.strain_rate_coefficient = strength.number("strain_rate_coefficient", 0.0, Range::non_negative());
-    jc.reference_strain_rate = strength.number("reference_strain_rate", 1.0, Range::positive());
-    jc.thermal_softening_exponent = strength.number("thermal_softening_exponent", 1.0, Range::positive());
-    jc.room_temperature = strength.number("room_temperature", 293.0, Range::positive());
-    jc.melt_temperature = strength.number("melt_temperature", 1.0e9, Range::positive());
-    jc.specific_heat = strength.number("specific_heat", 1.0e9, Range::positive());
-    m.strength = jc;
-  }
+  m.strength = read_model<Strength>(strength, std::variant_alternative_t<0, Strength>::name, m.reference_density);
   // Physical sanity: the Poisson ratio implied by the bulk and shear moduli, nu = (3K - 2 mu) / (2 (3K + mu)),
   // lies in (-1, 1/2) for any positive moduli; a negative one almost always means a unit slip (GPa vs Pa)
   // in one of them, so it is refused here with both values.

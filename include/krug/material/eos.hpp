@@ -10,6 +10,8 @@
 #include <string_view>
 #include <variant>
 
+#include "krug/material/parameters.hpp"
+
 namespace krug {
 
 // Ideal (gamma-law) gas: p = (gamma - 1) rho e.
@@ -121,6 +123,20 @@ struct MieGruneisen {
   double shock_slope() const { return 0.5 * hugoniot_slope; }
 };
 
+// Scenario parameters (parameters.hpp); reference_density comes from the material's density.
+constexpr auto parameters(std::type_identity<IdealGas>) {
+  return std::array{parameter::between("gamma", &IdealGas::gamma, 1.0, 10.0, true)};
+}
+constexpr auto parameters(std::type_identity<LinearBulk>) {
+  return std::array{parameter::positive("bulk_modulus", &LinearBulk::bulk_modulus)};
+}
+constexpr auto parameters(std::type_identity<MieGruneisen>) {
+  return std::array{parameter::positive("bulk_sound_speed", &MieGruneisen::bulk_sound_speed),
+                    parameter::between("hugoniot_slope", &MieGruneisen::hugoniot_slope, 0.0, 10.0),
+                    parameter::between("gruneisen", &MieGruneisen::gruneisen, 0.0, 10.0)};
+}
+
+// The equations of state a scenario may name (`eos.model`: each model's `name`), in this order.
 using Eos = std::variant<IdealGas, LinearBulk, MieGruneisen>;
 
 }  // namespace krug

@@ -9,6 +9,8 @@
 
 namespace krug {
 
+// The strength models a scenario may name (`strength.model`: each model's `name`; the first is the
+// default), in this order.
 using Strength = std::variant<NoStrength, Elastic, PerfectlyPlastic, LinearHardening, JohnsonCook>;
 
 struct Material {

@@ -31,6 +31,8 @@
 #include <limits>
 #include <string_view>
 
+#include "krug/material/parameters.hpp"
+
 namespace krug {
 
 // ---------------------------------------------------------------------------------------------------
@@ -276,6 +278,36 @@ struct JohnsonCook {
                                : room_temperature;
   }
 };
+
+// Scenario parameters (parameters.hpp). Johnson–Cook's optional terms default to off; its melt
+// temperature and specific heat default to 1e9 (no softening, no heating) in a scenario.
+constexpr auto parameters(std::type_identity<Elastic>) {
+  return std::array{parameter::positive("shear_modulus", &Elastic::shear_modulus)};
+}
+constexpr auto parameters(std::type_identity<PerfectlyPlastic>) {
+  return std::array{parameter::positive("shear_modulus", &PerfectlyPlastic::shear_modulus),
+                    parameter::non_negative("yield_stress", &PerfectlyPlastic::yield_stress)};
+}
+constexpr auto parameters(std::type_identity<LinearHardening>) {
+  return std::array{parameter::positive("shear_modulus", &LinearHardening::shear_modulus),
+                    parameter::non_negative("yield_stress", &LinearHardening::yield_stress),
+                    parameter::non_negative("hardening_modulus", &LinearHardening::hardening_modulus)};
+}
+constexpr auto parameters(std::type_identity<JohnsonCook>) {
+  using parameter::optional;
+  using parameter::positive;
+  using parameter::non_negative;
+  return std::array{positive("shear_modulus", &JohnsonCook::shear_modulus),
+                    non_negative("yield_stress", &JohnsonCook::yield_stress),
+                    optional(non_negative("hardening_coefficient", &JohnsonCook::hardening_coefficient), 0.0),
+                    optional(positive("hardening_exponent", &JohnsonCook::hardening_exponent), 1.0),
+                    optional(non_negative("strain_rate_coefficient", &JohnsonCook::strain_rate_coefficient), 0.0),
+                    optional(positive("reference_strain_rate", &JohnsonCook::reference_strain_rate), 1.0),
+                    optional(positive("thermal_softening_exponent", &JohnsonCook::thermal_softening_exponent), 1.0),
+                    optional(positive("room_temperature", &JohnsonCook::room_temperature), 293.0),
+                    optional(positive("melt_temperature", &JohnsonCook::melt_temperature), 1.0e9),
+                    optional(positive("specific_heat", &JohnsonCook::specific_heat), 1.0e9)};
+}
 
 // ---------------------------------------------------------------------------------------------------
 // Radial return per model (step 3) and the whole deviator update (steps 1-3)
