@@ -43,24 +43,18 @@ void ContactSolver::rebuild_boundaries(const Mesh& mesh) {
 
 // --- points: nodes and particles -------------------------------------------------------------
 
-Vec2 ContactSolver::reaction_force(Index point) const {
-  if (is_particle(point)) {
-    const Index i = particle_of(point);
-    return {particle_reaction_x_[i], particle_reaction_y_[i]};
-  }
-  return {reaction_x_[point], reaction_y_[point]};
+Vec2 ContactSolver::reaction_force(ContactPoint point) const {
+  if (point.is_particle()) return {particle_reaction_x_[point.index], particle_reaction_y_[point.index]};
+  return {reaction_x_[point.index], reaction_y_[point.index]};
 }
-Vec2 ContactSolver::overlap_reaction_force(Index point) const {
-  if (is_particle(point)) {
-    const Index i = particle_of(point);
-    return {particle_overlap_x_[i], particle_overlap_y_[i]};
-  }
-  return {overlap_x_[point], overlap_y_[point]};
+Vec2 ContactSolver::overlap_reaction_force(ContactPoint point) const {
+  if (point.is_particle()) return {particle_overlap_x_[point.index], particle_overlap_y_[point.index]};
+  return {overlap_x_[point.index], overlap_y_[point.index]};
 }
 
-void ContactSolver::touch(Index point, Vec2 force) {
-  if (is_particle(point)) {
-    const Index i = particle_of(point);
+void ContactSolver::touch(ContactPoint point, Vec2 force) {
+  const Index i = point.index;
+  if (point.is_particle()) {
     if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) touched_.push_back(point);
     particle_reaction_x_[i] += force.x;
     particle_reaction_y_[i] += force.y;
@@ -71,28 +65,28 @@ void ContactSolver::touch(Index point, Vec2 force) {
     if (particle_reaction_x_[i] == 0.0 && particle_reaction_y_[i] == 0.0) particle_reaction_x_[i] = 1e-300;
     return;
   }
-  reaction_x_[point] += force.x;
-  reaction_y_[point] += force.y;
+  reaction_x_[i] += force.x;
+  reaction_y_[i] += force.y;
   if (overlapping_) {
-    overlap_x_[point] += force.x;
-    overlap_y_[point] += force.y;
+    overlap_x_[i] += force.x;
+    overlap_y_[i] += force.y;
   }
-  if (!touched_flag_[point]) {
-    touched_flag_[point] = 1;
+  if (!touched_flag_[i]) {
+    touched_flag_[i] = 1;
     touched_.push_back(point);
   }
 }
 
-void ContactSolver::apply(Index point, Vec2 direction, double force, double dt_mid) {
-  if (point == -1 || force == 0.0) return;
+void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, double dt_mid) {
+  if (!point.exists() || force == 0.0) return;
   const InverseMass w = inverse_mass(point);
-  if (is_particle(point)) {
-    const Index i = particle_of(point);
+  const Index i = point.index;
+  if (point.is_particle()) {
     particles_->u[i] += dt_mid * force * direction.x * w.x;
     particles_->v[i] += dt_mid * force * direction.y * w.y;
   } else {
-    mesh_->nodes.u[point] += dt_mid * force * direction.x * w.x;
-    mesh_->nodes.v[point] += dt_mid * force * direction.y * w.y;
+    mesh_->nodes.u[i] += dt_mid * force * direction.x * w.x;
+    mesh_->nodes.v[i] += dt_mid * force * direction.y * w.y;
   }
   touch(point, force * direction);
 }
@@ -122,7 +116,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
       const double length = norm(position(s.b) - position(s.a));
       if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
       if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
-      Candidate candidate{c, s.a, s.b};
+      Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
       candidate.kind = Kind::node_segment;
       candidate.friction = friction;
       candidate.weight = weight;
@@ -136,7 +130,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
 void ContactSolver::add_particle_candidates(double dt_next) {
   const Index count = particles_->size();
   if (count == 0) return;
-  auto swept_box = [&](Index point) {
+  auto swept_box = [&](ContactPoint point) {
     Box box;
     box.include(position(point));
     box.include(predicted(point, dt_next));
@@ -158,14 +152,14 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   }
   grid_.build(boxes_);
   for (Index i = 0; i < count; ++i) {
-    const Index point = particle_point(i);
+    const ContactPoint point = ContactPoint::particle(i);
     const double r = radius(point);
     grid_.query(swept_box(point), [&](std::size_t k) {
       const BoundarySegment& s = *segments[k];
       const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
       const double length = norm(position(s.b) - position(s.a));
       if (start.inside && start.gap < -2.0 * r) return;  // centre behind the face: the far side of a body
-      Candidate candidate{point, s.a, s.b};
+      Candidate candidate{point, ContactPoint::node(s.a), ContactPoint::node(s.b)};
       candidate.kind = Kind::particle_segment;
       // The start gap on each feature of the segment: contact_geometry takes the one of the feature its
       // predicted gap is measured on (the face's line, or an end point).
@@ -178,14 +172,14 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   }
   // Particles against each other.
   boxes_.clear();
-  for (Index i = 0; i < count; ++i) boxes_.push_back(swept_box(particle_point(i)));
+  for (Index i = 0; i < count; ++i) boxes_.push_back(swept_box(ContactPoint::particle(i)));
   grid_.build(boxes_);
   for (Index i = 0; i < count; ++i) {
     grid_.query(boxes_[static_cast<std::size_t>(i)], [&](std::size_t j) {
       if (static_cast<Index>(j) <= i) return;
-      const Index a = particle_point(i), b = particle_point(static_cast<Index>(j));
+      const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
       const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
-      Candidate candidate{a, b, -1};
+      Candidate candidate{a, b, {}};
       candidate.kind = Kind::particle_particle;
       candidate.start_gap = std::min(start_gap, 0.0);
       candidate.length = std::max(radius(a), radius(b));
@@ -194,7 +188,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   }
   // Particles against the walls and the axis.
   for (Index i = 0; i < count; ++i) {
-    const Index point = particle_point(i);
+    const ContactPoint point = ContactPoint::particle(i);
     const double reach = dt_next * norm(velocity(point)) + (1.0 + particle_search_margin) * radius(point);
     for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
       const RigidWall& wall = setup_.walls[w];
@@ -202,7 +196,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
       if (!wall.bodies.empty() && std::find(wall.bodies.begin(), wall.bodies.end(), origin) == wall.bodies.end()) continue;
       const double start_gap = dot(position(point) - wall.point, wall.normal) - radius(point);
       if (start_gap + radius(point) - reach > 0.0) continue;
-      Candidate candidate{point, -1, -1, static_cast<Index>(w)};
+      Candidate candidate{point, {}, {}, static_cast<Index>(w)};
       candidate.kind = Kind::wall;
       candidate.friction = wall.friction;
       candidate.start_gap = std::min(start_gap, 0.0);
@@ -210,7 +204,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
       candidates_.push_back(candidate);
     }
     if (setup_.axis_wall && position(point).y - reach <= 0.0) {
-      Candidate candidate{point, -1, -1, -2};
+      Candidate candidate{point, {}, {}, -2};
       candidate.kind = Kind::wall;
       candidate.start_gap = std::min(position(point).y - radius(point), 0.0);
       candidate.length = radius(point);
@@ -246,7 +240,7 @@ void ContactSolver::find_candidates(double dt_next) {
         const double start_gap = dot(position(c) - wall.point, wall.normal);
         const double reach = dt_next * norm(velocity(c));
         if (start_gap - reach > 0.0) continue;  // cannot reach the wall in this step
-        Candidate candidate{c, -1, -1, static_cast<Index>(w)};
+        Candidate candidate{ContactPoint::node(c), {}, {}, static_cast<Index>(w)};
         candidate.kind = Kind::wall;
         candidate.friction = wall.friction;
         candidate.start_gap = std::min(start_gap, 0.0);
@@ -332,8 +326,8 @@ double ContactSolver::friction_total(const Candidate& c, const Geometry& g, doub
 
 Vec2 ContactSolver::relative_velocity(const Candidate& c, double xi) const {
   Vec2 relative = velocity(c.node);
-  if (c.a != -1) relative -= (1.0 - xi) * velocity(c.a);
-  if (c.b != -1) relative -= xi * velocity(c.b);
+  if (c.a.exists()) relative -= (1.0 - xi) * velocity(c.a);
+  if (c.b.exists()) relative -= xi * velocity(c.b);
   return relative;
 }
 
@@ -378,11 +372,11 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
 ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next) {
   mesh_ = &mesh;
   particles_ = &particles;
-  for (Index p : touched_) {
-    if (is_particle(p)) continue;
-    reaction_x_[p] = reaction_y_[p] = 0.0;
-    overlap_x_[p] = overlap_y_[p] = 0.0;
-    touched_flag_[p] = 0;
+  for (const ContactPoint p : touched_) {
+    if (p.is_particle()) continue;
+    reaction_x_[p.index] = reaction_y_[p.index] = 0.0;
+    overlap_x_[p.index] = overlap_y_[p.index] = 0.0;
+    touched_flag_[p.index] = 0;
   }
   touched_.clear();
   particle_reaction_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);

@@ -371,19 +371,20 @@ void Simulation::book_contact_work(double dt_mid) {
   // it done by the contacts that carry a pre-existing overlap (DESIGN.md section 3): the rest, the work
   // of contacts that started the step apart, is dissipative.
   const NodeFields& nodes = mesh_.nodes;
-  for (Index p : contact_.touched_points()) {
-    const Vec2 r = contact_.reaction_force(p);
-    if (contact::ContactSolver::is_particle(p)) {
-      const Index i = contact::ContactSolver::particle_of(p);
+  for (const contact::ContactPoint point : contact_.touched_points()) {
+    const Vec2 r = contact_.reaction_force(point);
+    if (point.is_particle()) {
+      const Index i = point.index;
       const Vec2 ubar{0.5 * (particles_.u_old[i] + particles_.u[i]), 0.5 * (particles_.v_old[i] + particles_.v[i])};
       ledger_.energy.contact += dt_mid * dot(r, ubar);
-      ledger_.energy.overlap += dt_mid * dot(contact_.overlap_reaction_force(p), ubar);
+      ledger_.energy.overlap += dt_mid * dot(contact_.overlap_reaction_force(point), ubar);
       continue;
     }
+    const Index p = point.index;
     const double ubar = 0.5 * (nodes.u_old[p] + nodes.u[p]);
     const double vbar = 0.5 * (nodes.v_old[p] + nodes.v[p]);
     ledger_.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
-    const Vec2 overlap = contact_.overlap_reaction_force(p);
+    const Vec2 overlap = contact_.overlap_reaction_force(point);
     ledger_.energy.overlap += dt_mid * (overlap.x * ubar + overlap.y * vbar);
     if (held_x_[static_cast<std::size_t>(p)]) {
       ledger_.energy.boundary -= dt_mid * r.x * nodes.u[p];

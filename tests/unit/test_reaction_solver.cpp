@@ -118,9 +118,9 @@ TEST_CASE("node against a fixed segment: the reaction closes the predicted gap",
   CHECK(predicted_gap(scene, 4, 3, 2) == Approx(0.0).margin(1e-12));
   for (Index n : {5, 6, 7}) CHECK(scene.mesh.nodes.v[n] == -10.0);
   // The recorded reaction forces: R n on the node, -(1 - xi) R n = -250 n on each end (xi = 0.5).
-  check_vec(solver.reaction_force(4), {0.0, 500.0}, 1e-9);
-  check_vec(solver.reaction_force(3), {0.0, -250.0}, 1e-9);
-  check_vec(solver.reaction_force(2), {0.0, -250.0}, 1e-9);
+  check_vec(solver.reaction_force(ContactPoint::node(4)), {0.0, 500.0}, 1e-9);
+  check_vec(solver.reaction_force(ContactPoint::node(3)), {0.0, -250.0}, 1e-9);
+  check_vec(solver.reaction_force(ContactPoint::node(2)), {0.0, -250.0}, 1e-9);
   CHECK(scene.mesh.nodes.v[2] == 0.0);  // held: the force is booked, the velocity stays
   CHECK(stats.deepest_gap >= -1e-12);
 }
@@ -192,8 +192,8 @@ TEST_CASE("two nodes on one free segment: coupled reactions converge to the hand
     // Closed to the tolerance (a pushing contact must neither penetrate nor stay open).
     CHECK(std::abs(predicted_gap(scene, c, 3, 2)) <= tolerance);
     // A gap error of 1e-5 is an error of 1e-5 / (2e-4 * 2) = 0.025 N in R: R within 0.1 of 250.
-    CHECK(solver.reaction_force(c).y == Approx(250.0).margin(0.1));
-    CHECK(solver.reaction_force(c).y >= 0.0);
+    CHECK(solver.reaction_force(ContactPoint::node(c)).y == Approx(250.0).margin(0.1));
+    CHECK(solver.reaction_force(ContactPoint::node(c)).y >= 0.0);
     CHECK(scene.mesh.nodes.v[c] == Approx(-3.5).margin(1e-3));
   }
   CHECK(scene.mesh.nodes.v[2] == Approx(1.5).margin(1e-3));
@@ -240,14 +240,14 @@ TEST_CASE("oblique approach with friction: no pull, gaps closed, momentum conser
   const Vec2 n = method == ReactionMethod::summation ? normal_before : top_normal();
   const double slack = method == ReactionMethod::summation ? 1e-9 : 1e-3;
   for (Index c = 4; c < 8; ++c) {
-    const Vec2 f = solver.reaction_force(c);
+    const Vec2 f = solver.reaction_force(ContactPoint::node(c));
     const double normal_part = dot(f, n);
     const double tangential_part = std::abs(cross(n, f));
     CHECK(normal_part >= -slack * norm(f));
     CHECK(tangential_part <= 0.3 * normal_part + slack * norm(f));
   }
-  CHECK(norm(solver.reaction_force(4)) > 0.0);
-  CHECK(norm(solver.reaction_force(5)) > 0.0);
+  CHECK(norm(solver.reaction_force(ContactPoint::node(4))) > 0.0);
+  CHECK(norm(solver.reaction_force(ContactPoint::node(5))) > 0.0);
   check_vec(momentum(scene), before, 1e-12);
   if (method == ReactionMethod::gauss_seidel) {
     // The sweeps stop at gaps within tolerance x the candidate's segment length (1 for the top face).
@@ -299,7 +299,7 @@ TEST_CASE("particle against a free segment: hand reaction and momentum", "[kerne
       scene.particles.position(0) + dt_next * scene.particles.velocity(0), predicted_node(scene, 3),
       predicted_node(scene, 2), 0.1);
   CHECK(after.gap == Approx(0.0).margin(1e-12));
-  check_vec(solver.reaction_force(ContactSolver::particle_point(0)), {0.0, 1500.0}, 1e-9);
+  check_vec(solver.reaction_force(ContactPoint::particle(0)), {0.0, 1500.0}, 1e-9);
   check_vec(momentum(scene), before, 1e-12);
   check_vec(momentum(scene), {0.0, -40.0}, 1e-12);
 }
@@ -335,7 +335,7 @@ TEST_CASE("particle off the segment's middle and at a corner: invariants", "[ker
   // (1, 1)/sqrt(2) at the corner). It need not be parallel to the final normal: particle contacts add
   // each change along the current normal (contact.hpp, Candidate), and off the middle the face turns
   // by ~0.13 rad in this step (its ends move by 0.02 x 0.01 x 1333 x (0.25, 0.75)).
-  const Vec2 push = solver.reaction_force(ContactSolver::particle_point(0));
+  const Vec2 push = solver.reaction_force(ContactPoint::particle(0));
   const Vec2 normal_before = centre.x < 1.0 ? Vec2{0.0, 1.0} : std::sqrt(0.5) * Vec2{1.0, 1.0};
   CHECK(dot(push, top.normal) > 0.0);
   CHECK(dot(push, normal_before) > 0.0);
@@ -442,7 +442,7 @@ TEST_CASE("pre-existing overlap: removed by the overlap fraction, at most overla
   for (Index n : {0, 1}) {
     CHECK(scene.mesh.nodes.v[n] == Approx(dt_mid * expected_r).margin(1e-12));
     // The whole reaction belongs to a contact with a pre-existing overlap: the ledger's overlap line.
-    check_vec(solver.overlap_reaction_force(n), {0.0, expected_r}, 1e-9);
+    check_vec(solver.overlap_reaction_force(ContactPoint::node(n)), {0.0, expected_r}, 1e-9);
   }
   // deepest_gap is measured from the start gap: the removal leaves it at or above 0.
   CHECK(stats.deepest_gap >= -1e-12);
@@ -470,9 +470,9 @@ TEST_CASE("node landing on a face near a convex corner gets no push from the sid
   ContactSolver solver = pair_solver(scene, method);
   solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
   CHECK(scene.mesh.nodes.u[4] == Approx(0.0).margin(1e-12));
-  check_vec(solver.overlap_reaction_force(4), {0.0, 0.0}, 1e-9);
+  check_vec(solver.overlap_reaction_force(ContactPoint::node(4)), {0.0, 0.0}, 1e-9);
   if (method == ReactionMethod::gauss_seidel) {
     CHECK(scene.mesh.nodes.v[4] == Approx(-2.5).margin(1e-12));
-    check_vec(solver.reaction_force(4), {0.0, 150.0}, 1e-9);
+    check_vec(solver.reaction_force(ContactPoint::node(4)), {0.0, 150.0}, 1e-9);
   }
 }

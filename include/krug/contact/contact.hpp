@@ -63,6 +63,21 @@ struct BodyBoundary {
   std::vector<Index> nodes;      // unique boundary nodes
 };
 
+// A point that takes part in a contact: a mesh node or a free particle (or none: the missing end of a
+// wall contact, or the second end of a particle-particle contact).
+struct ContactPoint {
+  enum class Kind : std::uint8_t { none, node, particle };
+  Kind kind = Kind::none;
+  Index index = -1;  // the node's or the particle's index
+
+  static constexpr ContactPoint node(Index n) { return {Kind::node, n}; }
+  static constexpr ContactPoint particle(Index i) { return {Kind::particle, i}; }
+  constexpr bool exists() const { return kind != Kind::none; }
+  constexpr bool is_node() const { return kind == Kind::node; }
+  constexpr bool is_particle() const { return kind == Kind::particle; }
+  friend constexpr bool operator==(ContactPoint, ContactPoint) = default;
+};
+
 class ContactSolver {
  public:
   ContactSolver() = default;
@@ -75,21 +90,18 @@ class ContactSolver {
   // velocities u*). Records the reaction force on each touched point for the ledger.
   ContactStatistics solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next);
 
-  // Points: a node index p >= 0, or a particle i encoded as -2 - i.
-  static constexpr Index particle_point(Index i) { return -2 - i; }
-  static constexpr bool is_particle(Index point) { return point <= -2; }
-  static constexpr Index particle_of(Index point) { return -2 - point; }
-  const std::vector<Index>& touched_points() const { return touched_; }
-  Vec2 reaction_force(Index point) const;
+  // The points that received a reaction in the last solve, in the order they first did.
+  const std::vector<ContactPoint>& touched_points() const { return touched_; }
+  Vec2 reaction_force(ContactPoint point) const;
   // The part of reaction_force(point) applied by contacts that carry a pre-existing overlap (a start gap
   // < 0, driven open by the overlap rule): its work is the ledger's overlap line.
-  Vec2 overlap_reaction_force(Index point) const;
+  Vec2 overlap_reaction_force(ContactPoint point) const;
   const ContactSetup& setup() const { return setup_; }
 
  private:
   enum class Kind : std::uint8_t { node_segment, particle_segment, particle_particle, wall };
   struct Candidate {
-    Index node, a, b;      // the point; segment nodes, or the other particle's point in a; -1 if none
+    ContactPoint node, a, b;  // the point; the segment's end nodes, or the other particle in a; none where absent
     Index wall = -1;       // wall index (Kind::wall; -2 is the axis)
     Kind kind = Kind::node_segment;
     double friction = 0.0;
@@ -132,28 +144,32 @@ class ContactSolver {
   // Returns the gap after this update (for the convergence check).
   double update(Candidate& c, double dt_mid, double dt_next);
   double overlap_target(double start_gap, double dt_next) const;
-  void apply(Index point, Vec2 direction, double force, double dt_mid);
+  void apply(ContactPoint point, Vec2 direction, double force, double dt_mid);
   // The reaction normal x n + tangent x t at xi: on the point, and shared by the segment's ends.
   void apply_reaction(const Candidate& c, Vec2 normal, double xi, double normal_force, double tangent_force,
                       double dt_mid);
-  // A point's state (node or particle), inline: the reaction loops call them for every candidate and sweep.
-  Vec2 position(Index point) const {
-    return is_particle(point) ? particles_->position(particle_of(point)) : mesh_->nodes.position(point);
+  // A point's state (node or particle), inline: the reaction loops call them for every candidate and
+  // sweep. The Index forms are for mesh nodes (segment ends, boundary nodes).
+  Vec2 position(Index node) const { return mesh_->nodes.position(node); }
+  Vec2 velocity(Index node) const { return mesh_->nodes.velocity(node); }
+  Vec2 predicted(Index node, double dt) const { return position(node) + dt * velocity(node); }
+  Vec2 position(ContactPoint point) const {
+    return point.is_particle() ? particles_->position(point.index) : mesh_->nodes.position(point.index);
   }
-  Vec2 velocity(Index point) const {
-    return is_particle(point) ? particles_->velocity(particle_of(point)) : mesh_->nodes.velocity(point);
+  Vec2 velocity(ContactPoint point) const {
+    return point.is_particle() ? particles_->velocity(point.index) : mesh_->nodes.velocity(point.index);
   }
-  Vec2 predicted(Index point, double dt) const { return position(point) + dt * velocity(point); }
-  InverseMass inverse_mass(Index point) const {
-    if (point == -1) return {};
-    if (is_particle(point)) {
-      const double inverse = 1.0 / particles_->mass[particle_of(point)];
+  Vec2 predicted(ContactPoint point, double dt) const { return position(point) + dt * velocity(point); }
+  InverseMass inverse_mass(ContactPoint point) const {
+    if (!point.exists()) return {};
+    if (point.is_particle()) {
+      const double inverse = 1.0 / particles_->mass[point.index];
       return {inverse, inverse};
     }
-    return {mesh_->nodes.inv_mass_x[point], mesh_->nodes.inv_mass_y[point]};
+    return {mesh_->nodes.inv_mass_x[point.index], mesh_->nodes.inv_mass_y[point.index]};
   }
-  double radius(Index point) const { return is_particle(point) ? particles_->radius[particle_of(point)] : 0.0; }
-  void touch(Index point, Vec2 force);
+  double radius(ContactPoint point) const { return point.is_particle() ? particles_->radius[point.index] : 0.0; }
+  void touch(ContactPoint point, Vec2 force);
 
   Mesh* mesh_ = nullptr;
   Particles* particles_ = nullptr;
@@ -170,7 +186,7 @@ class ContactSolver {
   UniformGrid grid_;
   std::vector<double> reaction_x_, reaction_y_;
   std::vector<double> overlap_x_, overlap_y_;
-  std::vector<Index> touched_;
+  std::vector<ContactPoint> touched_;
   std::vector<std::uint8_t> touched_flag_;
 };
 
