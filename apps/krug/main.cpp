@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "krug/io/scenario.hpp"
 #include "pictures.hpp"
 #include "plots.hpp"
@@ -105,7 +105,7 @@ int run(const Arguments& args) {
   const std::string title = !scenario.title.empty() ? scenario.title
                             : restarting            ? checkpoint.parent_path().filename().string()
                                                     : std::filesystem::path(args.scenario).stem().string();
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = directory;
   options.interrupt = &interrupted;
 
@@ -142,8 +142,8 @@ int run(const Arguments& args) {
     return true;
   };
   install_signal_handlers();
-  const krug::io::RunResult result = restarting ? krug::io::restart_scenario(scenario, checkpoint, options)
-                                                : krug::io::run_scenario(scenario, options);
+  const krug::io::RunResult result = restarting ? krug::run::restart_scenario(scenario, checkpoint, options)
+                                                : krug::run::run_scenario(scenario, options);
   if (interactive && last_report > 0.0) std::fputc('\n', stderr);
   for (const std::string& warning : result.warnings) std::fprintf(stderr, "krug: warning: %s\n", warning.c_str());
 
@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
   try {
     if (args.command == "validate") {
       const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
-      krug::io::validate_scenario(scenario);
+      krug::run::validate_scenario(scenario);
       std::printf("krug: %s is valid (%zu bodies, %d zones)\n", args.scenario.c_str(), scenario.setup.bodies.size(),
                   scenario.setup.mesh.zones.size());
       return 0;

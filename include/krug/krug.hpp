@@ -11,4 +11,5 @@
 #include "krug/mesh/quad.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/ledger.hpp"
+#include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"

@@ -148,7 +148,7 @@ struct TimedValue {
   double time, value;
 };
 
-std::vector<TimedValue> items_of(const std::deque<StopMonitor::Sample>& queue) {
+std::vector<TimedValue> items_of(const std::deque<StopWindow::Sample>& queue) {
   std::vector<TimedValue> items;
   for (const auto& [time, value] : queue) items.push_back({time, value});
   return items;
@@ -204,7 +204,7 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(progress.history_bytes);
   w.value(progress.wall_seconds);
   w.value(static_cast<std::uint8_t>(progress.has_stop_state));
-  const StopMonitor::State& stop = progress.stop;
+  const StopWindow& stop = progress.stop;
   w.value(static_cast<std::uint8_t>(stop.started));
   w.value(stop.initial_velocity);
   w.value(stop.scale);
@@ -294,7 +294,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   p.history_bytes = r.value<std::uint64_t>();
   p.wall_seconds = r.value<double>();
   p.has_stop_state = r.value<std::uint8_t>() != 0;
-  StopMonitor::State& stop = p.stop;
+  StopWindow& stop = p.stop;
   stop.started = r.value<std::uint8_t>() != 0;
   stop.initial_velocity = r.value<Vec2>();
   stop.scale = r.value<double>();

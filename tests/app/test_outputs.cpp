@@ -8,7 +8,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/io/outputs.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -48,10 +48,10 @@ TEST_CASE("completed and failed runs leave no partial files behind", "[app][outp
     // A floor above the stable step (1.9e-8 s) fails the run at its first cycle.
     if (fail) document["controls"]["time_step_floor"] = 1e-6;
     const fs::path dir = krug::test::scratch(fail ? "atomic_failed" : "atomic_completed");
-    krug::io::RunOptions options;
+    krug::run::RunOptions options;
     options.output_directory = dir;
     const krug::io::RunResult result =
-        krug::io::run_scenario(krug::io::parse_scenario(document.dump(), scenario_file.string()), options);
+        krug::run::run_scenario(krug::io::parse_scenario(document.dump(), scenario_file.string()), options);
     CHECK((result.status == krug::io::RunStatus::failed) == fail);
     CHECK(partial_files(dir) == 0);
     // Complete files: the summary parses, the VTK files are closed.

@@ -16,7 +16,7 @@
 #include <cmath>
 
 #include "krug/core/error.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -46,9 +46,9 @@ TEST_CASE("penetration results of E1: the flyer stops at the analytic depth, the
   CHECK(scenario.stop->clear_of_targets);
   CHECK(scenario.stop->body == "flyer");
   const fs::path dir = krug::test::scratch("penetration_e1");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::io::run_scenario(scenario, options);
+  const auto result = krug::run::run_scenario(scenario, options);
   CHECK(result.stopped_by == "stop rule");  // the flyer stopped: final without passing the target
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& p = summary["penetration"];
@@ -82,9 +82,9 @@ TEST_CASE("penetration geometry: a flyer beyond the target's rear face has perfo
   document["end_time"] = 1e-6;
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_beyond.json");
   const fs::path dir = krug::test::scratch("penetration_beyond");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::io::run_scenario(scenario, options);
+  const auto result = krug::run::run_scenario(scenario, options);
   CHECK(result.stopped_by == "end_time");  // no contact: the rule never arms
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& p = summary["penetration"];
@@ -139,7 +139,7 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
   document["end_time"] = 2e-5;
   const auto scenario = krug::io::parse_scenario(document.dump(), "taylor_erosion.json");
   const fs::path dir = krug::test::scratch("taylor_erosion");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = dir;
   double largest_strain = 0.0;  // of the zones still in the mesh, after every cycle
   options.on_cycle = [&](const krug::Simulation& s, double) {
@@ -148,7 +148,7 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
     }
     return true;
   };
-  const auto result = krug::io::run_scenario(scenario, options);
+  const auto result = krug::run::run_scenario(scenario, options);
   REQUIRE(result.status == krug::io::RunStatus::completed);
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& bar = summary["bodies"]["bar"]["fracture"];
@@ -172,23 +172,23 @@ TEST_CASE("a penetration run restarted from a checkpoint ends with the same pene
   document["stop"] = {{"no_contact_time", 5e-7}};
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_penetration_restart.json");
   const fs::path whole = krug::test::scratch("penetration_whole");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = whole;
-  REQUIRE(krug::io::run_scenario(scenario, options).stopped_by == "stop rule");
+  REQUIRE(krug::run::run_scenario(scenario, options).stopped_by == "stop rule");
 
   const fs::path parts = krug::test::scratch("penetration_parts");
   std::atomic<bool> interrupt{false};
-  krug::io::RunOptions first;
+  krug::run::RunOptions first;
   first.output_directory = parts;
   first.interrupt = &interrupt;
   first.on_cycle = [&](const krug::Simulation& s, double) {
     if (s.time() >= 1e-6) interrupt = true;
     return true;
   };
-  REQUIRE(krug::io::run_scenario(scenario, first).message == "interrupted");
-  krug::io::RunOptions second;
+  REQUIRE(krug::run::run_scenario(scenario, first).message == "interrupted");
+  krug::run::RunOptions second;
   second.output_directory = parts;
-  CHECK(krug::io::restart_scenario(parts / "checkpoint.bin", second).stopped_by == "stop rule");
+  CHECK(krug::run::restart_scenario(parts / "checkpoint.bin", second).stopped_by == "stop rule");
   const Json a = krug::test::summary_without_timing(whole / "summary.json");
   const Json b = krug::test::summary_without_timing(parts / "summary.json");
   CHECK(a["penetration"] == b["penetration"]);

@@ -1,4 +1,4 @@
-// Checkpoints and restart, through the library API (krug::io::run_scenario / restart_scenario).
+// Checkpoints and restart, through the library API (krug::run::run_scenario / restart_scenario).
 // A restarted run must be the run that was never stopped: summary.json equal apart from
 // wall_seconds, and history.csv and run.pvd equal byte for byte. The scenario is E1
 // (examples/verification/slab_impact.json: two elastic slabs in contact that separate at 1.55 us),
@@ -11,12 +11,12 @@
 
 #include "krug/core/error.hpp"
 #include "krug/io/checkpoint.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "krug/io/scenario.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
-using krug::io::RunOptions;
+using krug::run::RunOptions;
 using krug::io::RunStatus;
 using krug::test::Json;
 using krug::test::read_text;
@@ -45,7 +45,7 @@ krug::io::RunResult interrupted_run(const krug::io::Scenario& scenario, const fs
     if (s.time() >= at) interrupt = true;
     return true;
   };
-  return krug::io::run_scenario(scenario, options);
+  return krug::run::run_scenario(scenario, options);
 }
 
 void check_same_run(const fs::path& reference, const fs::path& restarted) {
@@ -62,7 +62,7 @@ TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if nev
   const auto scenario = krug::io::load_scenario(file);
   const fs::path reference = krug::test::scratch("restart_reference");
   const fs::path stopped = krug::test::scratch("restart_interrupted");
-  REQUIRE(krug::io::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
 
   const auto first = interrupted_run(scenario, stopped, 1.2e-6);
   CHECK(first.status == RunStatus::failed);
@@ -76,7 +76,7 @@ TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if nev
   // The slabs are in contact at 1.2 us (separation at 1.55 us): the contact state matters.
   CHECK(interrupted["bodies"]["target"]["velocity"][0].get<double>() > 1.0);
 
-  const auto second = krug::io::restart_scenario(stopped / "checkpoint.bin", to(stopped));
+  const auto second = krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped));
   CHECK(second.status == RunStatus::completed);
   CHECK(second.warnings.empty());
   check_same_run(reference, stopped);
@@ -89,8 +89,8 @@ TEST_CASE("a periodic checkpoint restarts into another directory with the whole 
   const fs::path reference = krug::test::scratch("checkpoint_reference");
   const fs::path periodic = krug::test::scratch("checkpoint_periodic");
   const fs::path elsewhere = krug::test::scratch("checkpoint_elsewhere");
-  REQUIRE(krug::io::run_scenario(plain, to(reference)).status == RunStatus::completed);
-  const auto run = krug::io::run_scenario(with_checkpoints, to(periodic));
+  REQUIRE(krug::run::run_scenario(plain, to(reference)).status == RunStatus::completed);
+  const auto run = krug::run::run_scenario(with_checkpoints, to(periodic));
   REQUIRE(run.status == RunStatus::completed);
   // Taking checkpoints does not change the run.
   CHECK(summary_without_timing(periodic / "summary.json") == summary_without_timing(reference / "summary.json"));
@@ -100,7 +100,7 @@ TEST_CASE("a periodic checkpoint restarts into another directory with the whole 
   CHECK(checkpoint.state.time < 3.1e-6);
   CHECK(checkpoint.progress.next_checkpoint_time == Approx(4.5e-6).margin(1e-15));
 
-  const auto restarted = krug::io::restart_scenario(periodic / "checkpoint.bin", to(elsewhere));
+  const auto restarted = krug::run::restart_scenario(periodic / "checkpoint.bin", to(elsewhere));
   CHECK(restarted.status == RunStatus::completed);
   check_same_run(reference, elsewhere);
   // The earlier snapshots were brought along.
@@ -112,7 +112,7 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
   const auto scenario = krug::io::load_scenario(file);
   const fs::path reference = krug::test::scratch("fracture_reference");
   const fs::path stopped = krug::test::scratch("fracture_interrupted");
-  REQUIRE(krug::io::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
   const Json whole = krug::test::read_json(reference / "summary.json");
   REQUIRE(whole["particles"]["count"].get<long>() > 0);
   // Stop when the first particles exist, so they are in the checkpoint.
@@ -123,9 +123,9 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
     if (s.particles().size() > 0) interrupt = true;
     return true;
   };
-  REQUIRE(krug::io::run_scenario(scenario, options).message == "interrupted");
+  REQUIRE(krug::run::run_scenario(scenario, options).message == "interrupted");
   REQUIRE(krug::io::read_checkpoint(stopped / "checkpoint.bin").state.particles.size() > 0);
-  CHECK(krug::io::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   check_same_run(reference, stopped);
 }
 
@@ -157,12 +157,12 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
 
   // A checkpoint of another mesh.
   const auto other = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "sod.json");
-  CHECK_THROWS_AS(krug::io::restart_scenario(other, dir / "checkpoint.bin", to(krug::test::scratch("checkpoint_foreign"))),
+  CHECK_THROWS_AS(krug::run::restart_scenario(other, dir / "checkpoint.bin", to(krug::test::scratch("checkpoint_foreign"))),
                   krug::InputError);
   // An edited scenario of the same mesh continues, with a warning (here: a later end time).
   const auto longer = scenario_with(file, [](Json& d) { d["end_time"] = 5e-6; });
   const fs::path extended_dir = krug::test::scratch("checkpoint_extended");
-  const auto extended = krug::io::restart_scenario(longer, dir / "checkpoint.bin", to(extended_dir));
+  const auto extended = krug::run::restart_scenario(longer, dir / "checkpoint.bin", to(extended_dir));
   CHECK(extended.status == RunStatus::completed);
   CHECK(extended.warnings.size() == 1);
   CHECK(krug::test::read_json(extended_dir / "summary.json")["time"].get<double>() == Approx(5e-6).epsilon(1e-12));

@@ -1,4 +1,4 @@
-// The stop rule (scenario key "stop", include/krug/io/stop_rule.hpp): first on velocity histories
+// The stop rule (scenario key "stop", include/krug/run/stop_rule.hpp): first on velocity histories
 // made up here, then on E1 (examples/verification/slab_impact.json), where the exact answer is
 // known: the 5 mm flyer at 10 m/s hits a 10 mm target of the same material, and the two separate at
 // 2 h_f / c_L = 1.550 us with the flyer at rest (equal impedances). With no_contact_time 0.5 us the
@@ -8,13 +8,13 @@
 #include <atomic>
 #include <cmath>
 
-#include "krug/io/run.hpp"
-#include "krug/io/stop_rule.hpp"
+#include "krug/run/run.hpp"
+#include "krug/run/stop_rule.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using krug::Vec2;
-using krug::io::StopMonitor;
+using krug::run::StopMonitor;
 using krug::io::StopRule;
 using krug::test::Json;
 
@@ -88,9 +88,9 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_stop.json");
   const fs::path dir = krug::test::scratch("stop_rule_e1");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::io::run_scenario(scenario, options);
+  const auto result = krug::run::run_scenario(scenario, options);
   CHECK(result.status == krug::io::RunStatus::completed);
   CHECK(result.stopped_by == "stop rule");
   const Json summary = krug::test::read_json(dir / "summary.json");
@@ -105,17 +105,17 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   SECTION("restarted inside the window, it stops at the same cycle") {
     const fs::path stopped = krug::test::scratch("stop_rule_e1_restart");
     std::atomic<bool> interrupt{false};
-    krug::io::RunOptions first;
+    krug::run::RunOptions first;
     first.output_directory = stopped;
     first.interrupt = &interrupt;
     first.on_cycle = [&](const krug::Simulation& s, double) {
       if (s.time() >= 1.8e-6) interrupt = true;
       return true;
     };
-    REQUIRE(krug::io::run_scenario(scenario, first).message == "interrupted");
-    krug::io::RunOptions second;
+    REQUIRE(krug::run::run_scenario(scenario, first).message == "interrupted");
+    krug::run::RunOptions second;
     second.output_directory = stopped;
-    CHECK(krug::io::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
+    CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
     CHECK(krug::test::summary_without_timing(stopped / "summary.json") == krug::test::summary_without_timing(dir / "summary.json"));
   }
 }
@@ -126,9 +126,9 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
   const auto run = [&](double plane, const std::string& name) {
     document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}, {"clear_of", plane}};
     const auto scenario = krug::io::parse_scenario(document.dump(), name + ".json");
-    krug::io::RunOptions options;
+    krug::run::RunOptions options;
     options.output_directory = krug::test::scratch(name);
-    return krug::io::run_scenario(scenario, options);
+    return krug::run::run_scenario(scenario, options);
   };
   // A plane behind the flyer: clear from the start, so the rule stops the run as without the plane.
   const auto behind = run(-6e-3, "stop_rule_clear_behind");
@@ -142,8 +142,8 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
 TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {
   const auto scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   const fs::path dir = krug::test::scratch("stop_rule_none");
-  krug::io::RunOptions options;
+  krug::run::RunOptions options;
   options.output_directory = dir;
-  CHECK(krug::io::run_scenario(scenario, options).stopped_by == "end_time");
+  CHECK(krug::run::run_scenario(scenario, options).stopped_by == "end_time");
   CHECK(krug::test::read_json(dir / "summary.json")["stopped_by"] == "end_time");
 }

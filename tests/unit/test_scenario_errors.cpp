@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "krug/io/scenario.hpp"
 
 using krug::InputError;
@@ -171,7 +171,7 @@ TEST_CASE("an end time beyond the cycle budget is refused before the run", "[sce
   const auto scenario = parse_scenario(text, "test.json");
   std::string e = "(no error)";
   try {
-    krug::io::validate_scenario(scenario);
+    krug::run::validate_scenario(scenario);
   } catch (const InputError& error) {
     e = error.what();
   }
@@ -179,5 +179,5 @@ TEST_CASE("an end time beyond the cycle budget is refused before the run", "[sce
   CHECK_THAT(e, Catch::Contains("controls.max_cycles = 1000000"));
   CHECK_THAT(e, Catch::Contains("(set by zone "));
   // Within budget: accepted.
-  CHECK_NOTHROW(krug::io::validate_scenario(parse_scenario(two_blocks(0.01), "test.json")));
+  CHECK_NOTHROW(krug::run::validate_scenario(parse_scenario(two_blocks(0.01), "test.json")));
 }

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "krug/io/scenario.hpp"
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
@@ -82,7 +82,7 @@ PaperRun run_paper_case(const std::string& file) {
   REQUIRE(scenario.stop.has_value());
   PaperRun run;
   std::size_t plates = 0;
-  io::RunOptions options;
+  run::RunOptions options;
   options.output_directory = std::filesystem::temp_directory_path() / ("krug_test_paper_" + std::filesystem::path(file).stem().string());
   // Damage onsets, from every cycle (a zone converted later is still seen).
   options.on_cycle = [&](const Simulation& sim, double) {
@@ -131,7 +131,7 @@ PaperRun run_paper_case(const std::string& file) {
   plates = scenario.setup.bodies.size() - 1;
   run.first_damage.assign(plates, Onset{});
   run.first_damage_on_axis.assign(plates, Onset{});
-  const io::RunResult result = io::run_scenario(scenario, options);
+  const io::RunResult result = run::run_scenario(scenario, options);
   std::filesystem::remove_all(options.output_directory);
   run.status = result.status == io::RunStatus::completed ? "completed" : result.message;
   REQUIRE(result.penetration.has_value());

@@ -17,13 +17,27 @@
 #include <utility>
 #include <vector>
 
-#include "krug/io/stop_rule.hpp"
+#include <deque>
+
+#include "krug/core/vec2.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::io {
 
 inline constexpr std::uint32_t checkpoint_version = 2;
+
+// The stop rule's window as it stands (krug/run/stop_rule.hpp, StopMonitor): what a checkpoint keeps
+// of it. Each component's window extremes are kept as (time, value) samples in monotonic queues.
+struct StopWindow {
+  using Sample = std::pair<double, double>;
+  bool started = false;
+  Vec2 initial_velocity;
+  double scale = 0.0;       // S
+  bool armed = false;
+  double armed_time = 0.0;
+  std::deque<Sample> max_x, min_x, max_y, min_y;
+};
 
 // Which limit set the time step, cycle by cycle: the cycles each body's zones set it, the cycles each
 // other limit did, and the smallest step with where it came from.
@@ -46,7 +60,7 @@ struct RunProgress {
   std::uint64_t history_bytes = 0;   // length of history.csv when the checkpoint was taken
   double wall_seconds = 0.0;         // wall time of the run so far
   bool has_stop_state = false;
-  StopMonitor::State stop;
+  StopWindow stop;
   bool has_penetration = false;
   PenetrationRecord penetration;
   TimeStepRecord time_steps;

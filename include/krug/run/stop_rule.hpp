@@ -18,22 +18,18 @@
 #include <utility>
 
 #include "krug/core/vec2.hpp"
+#include "krug/io/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 
-namespace krug::io {
+namespace krug::run {
+
+using io::StopRule;
 
 class StopMonitor {
  public:
-  // A (time, value) sample; the queues hold the window's candidate maxima and minima.
-  using Sample = std::pair<double, double>;
-  struct State {
-    bool started = false;
-    Vec2 initial_velocity;
-    double scale = 0.0;       // S
-    bool armed = false;
-    double armed_time = 0.0;
-    std::deque<Sample> max_x, min_x, max_y, min_y;
-  };
+  // The window's state (kept in checkpoints, so its type lives in io: io::StopWindow).
+  using Sample = io::StopWindow::Sample;
+  using State = io::StopWindow;
 
   explicit StopMonitor(StopRule rule) : rule_(std::move(rule)) {}
 
@@ -53,4 +49,4 @@ class StopMonitor {
   State state_;
 };
 
-}  // namespace krug::io
+}  // namespace krug::run

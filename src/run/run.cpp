@@ -1,4 +1,4 @@
-#include "krug/io/run.hpp"
+#include "krug/run/run.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -8,9 +8,18 @@
 
 #include "krug/core/error.hpp"
 #include "krug/io/checkpoint.hpp"
-#include "krug/io/stop_rule.hpp"
+#include "krug/run/stop_rule.hpp"
 
-namespace krug::io {
+namespace krug::run {
+
+using io::Checkpoint;
+using io::RunProgress;
+using io::RunRecorder;
+using io::StopRule;
+using io::fnv1a;
+using io::load_scenario;
+using io::read_checkpoint;
+using io::write_checkpoint;
 
 namespace {
 
@@ -209,4 +218,4 @@ RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path
   return result;
 }
 
-}  // namespace krug::io
+}  // namespace krug::run

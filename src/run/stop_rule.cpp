@@ -1,9 +1,9 @@
-#include "krug/io/stop_rule.hpp"
+#include "krug/run/stop_rule.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace krug::io {
+namespace krug::run {
 
 namespace {
 
@@ -47,4 +47,4 @@ bool StopMonitor::observe(double time, Vec2 velocity, const std::function<bool()
   return spread <= tolerance && clear();
 }
 
-}  // namespace krug::io
+}  // namespace krug::run

@@ -9,7 +9,12 @@
 #include "krug/io/outputs.hpp"
 #include "krug/io/scenario.hpp"
 
-namespace krug::io {
+namespace krug::run {
+
+using io::RunResult;
+using io::RunStatus;
+using io::Scenario;
+using io::PictureHook;
 
 struct RunOptions {
   std::filesystem::path output_directory;  // empty: the scenario's own (restart: the checkpoint's)
@@ -43,4 +48,4 @@ RunResult restart_scenario(const std::filesystem::path& checkpoint, const RunOpt
 RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path& checkpoint,
                            const RunOptions& options);
 
-}  // namespace krug::io
+}  // namespace krug::run
