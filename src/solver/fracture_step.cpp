@@ -205,58 +205,8 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
 }
 
 std::vector<Fragment> Simulation::fragments(const Body& body) const {
-  const ZoneFields& zones = mesh_.zones;
-  const NodeFields& nodes = mesh_.nodes;
-  const Index count = body.zone_end - body.zone_begin;
-  std::vector<Index> parent(static_cast<std::size_t>(count));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index i) {
-    while (parent[static_cast<std::size_t>(i)] != i) {
-      parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-      i = parent[static_cast<std::size_t>(i)];
-    }
-    return i;
-  };
-  for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-    if (!zones.active[z]) continue;
-    for (int k = 0; k < 4; ++k) {
-      const Index w = zones.neighbour[z][k];
-      if (w >= 0 && zones.active[w]) {
-        const Index a = find(z - body.zone_begin), c = find(w - body.zone_begin);
-        if (a != c) parent[static_cast<std::size_t>(std::max(a, c))] = std::min(a, c);
-      }
-    }
-  }
-  std::vector<Index> slot(static_cast<std::size_t>(count), -1);
-  std::vector<Fragment> pieces;
-  std::vector<double> moment_mass;
-  for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-    if (!zones.active[z]) continue;
-    const Index root = find(z - body.zone_begin);
-    Index& s = slot[static_cast<std::size_t>(root)];
-    if (s < 0) {
-      s = static_cast<Index>(pieces.size());
-      pieces.emplace_back();
-      pieces.back().bbox_min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-      pieces.back().bbox_max = -pieces.back().bbox_min;
-    }
-    Fragment& f = pieces[static_cast<std::size_t>(s)];
-    const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
-    for (int p = 0; p < 4; ++p) {
-      const Index node = zones.corners[z][p];
-      f.velocity += corner_mass[p] * nodes.velocity(node);
-      f.centroid += corner_mass[p] * nodes.position(node);
-      f.bbox_min = {std::min(f.bbox_min.x, nodes.x[node]), std::min(f.bbox_min.y, nodes.y[node])};
-      f.bbox_max = {std::max(f.bbox_max.x, nodes.x[node]), std::max(f.bbox_max.y, nodes.y[node])};
-    }
-    f.mass += zones.mass[z];
-    ++f.zones;
-  }
-  for (Fragment& f : pieces) {
-    f.velocity = (1.0 / f.mass) * f.velocity;
-    f.centroid = (1.0 / f.mass) * f.centroid;
-    f.mass *= whole_body_factor();
-  }
+  std::vector<Fragment> pieces = connected_pieces(mesh_, body.zone_begin, body.zone_end);
+  for (Fragment& f : pieces) f.mass *= whole_body_factor();
   std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
   return pieces;
 }

@@ -10,6 +10,7 @@
 #include "krug/particles/particles.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/pieces.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/ledger.hpp"
 
@@ -62,13 +63,6 @@ enum class TimeStepLimit : std::uint8_t {
   end_time          // the last step, cut to reach the end time
 };
 
-struct Fragment {
-  double mass = 0.0;   // whole body (x 2 pi in RZ)
-  Vec2 velocity;       // mass-weighted
-  Vec2 centroid;
-  Vec2 bbox_min, bbox_max;  // over the corners of its zones
-  Index zones = 0;
-};
 
 // Fracture counters of one body.
 struct FractureCounts {
@@ -149,7 +143,8 @@ class Simulation {
   void cap_next_time_step(double dt);
 
   BodySummary summarise(const Body& body) const;
-  // Connected pieces of a body's remaining zones (by shared edges), heaviest first.
+  // Connected pieces of a body's remaining zones (by shared edges; connected_pieces), heaviest first,
+  // masses for the whole body (x 2 pi in RZ).
   std::vector<Fragment> fragments(const Body& body) const;
   const Particles& particles() const { return particles_; }
   const FractureCounts& fracture_counts(Index body) const { return fracture_counts_[static_cast<std::size_t>(body)]; }
