@@ -1,6 +1,7 @@
 // Connectivity-derived mesh data: field sizes, edge continuations for the viscosity limiter and
 // boundary segments. Edges are matched by sorting (deterministic, independent of hashing).
 #include <algorithm>
+#include <string_view>
 #include <tuple>
 
 #include "krug/mesh/mesh.hpp"
@@ -8,30 +9,16 @@
 namespace krug {
 
 void NodeFields::resize(Index n) {
-  for (auto* f : {&x, &y, &u, &v, &u_old, &v_old, &force_x, &force_y, &mass, &inv_mass_x, &inv_mass_y, &x0, &y0}) {
-    f->resize(n, 0.0);
-  }
-  body.resize(n, -1);
+  for_each_node_field(*this, [n](std::string_view, auto& field, std::size_t per, auto fill) {
+    field.resize(per * static_cast<std::size_t>(n), fill);
+  });
 }
 
 void ZoneFields::resize(Index n) {
-  corners.resize(n, ZoneCorners{-1, -1, -1, -1});
-  body.resize(n, -1);
-  active.resize(n, 1);
-  for (auto* f : {&mass, &density, &specific_energy, &pressure, &sound_speed, &volume, &area,
-                  &viscous_speed, &volume_change, &deviator_xx, &deviator_yy, &deviator_xy,
-                  &deviator_zz, &plastic_strain, &hourglass_x, &hourglass_y, &initial_altitude, &stable_time_step}) {
-    f->resize(n, 0.0);
-  }
-  damaged.resize(n, 0);
-  damage_time.resize(n, -1.0);
-  damage_criterion.resize(n, 0);
-  neighbour.resize(n, ZoneCorners{-1, -1, -1, -1});
-  corner_mass.resize(4 * static_cast<std::size_t>(n), 0.0);
+  for_each_zone_field(*this, [n](std::string_view, auto& field, std::size_t per, auto fill) {
+    field.resize(per * static_cast<std::size_t>(n), fill);
+  });
   neighbours_built = false;
-  corner_force.resize(8 * static_cast<std::size_t>(n), 0.0);
-  edge_before.resize(n, ZoneCorners{-1, -1, -1, -1});
-  edge_after.resize(n, ZoneCorners{-1, -1, -1, -1});
 }
 
 namespace {

@@ -69,6 +69,68 @@ struct ZoneFields {
   void resize(Index n);
 };
 
+// The field registry: every per-node and per-zone array, once, with its name, its entries per node or
+// zone and the value a new entry takes. Resizing and checkpoints (write and read, in this order) walk
+// these lists, so a new field is its member above plus one line here. `f(name, array, per, fill)`.
+template <class Nodes, class F>
+void for_each_node_field(Nodes& n, F&& f) {
+  f("x", n.x, 1, 0.0);
+  f("y", n.y, 1, 0.0);
+  f("u", n.u, 1, 0.0);
+  f("v", n.v, 1, 0.0);
+  f("u_old", n.u_old, 1, 0.0);
+  f("v_old", n.v_old, 1, 0.0);
+  f("force_x", n.force_x, 1, 0.0);
+  f("force_y", n.force_y, 1, 0.0);
+  f("mass", n.mass, 1, 0.0);
+  f("x0", n.x0, 1, 0.0);
+  f("y0", n.y0, 1, 0.0);
+  f("inv_mass_x", n.inv_mass_x, 1, 0.0);
+  f("inv_mass_y", n.inv_mass_y, 1, 0.0);
+  f("body", n.body, 1, Index{-1});
+}
+
+template <class Zones, class F>
+void for_each_zone_field(Zones& z, F&& f) {
+  constexpr ZoneCorners none{-1, -1, -1, -1};
+  f("corners", z.corners, 1, none);
+  f("body", z.body, 1, Index{-1});
+  f("active", z.active, 1, std::uint8_t{1});
+  f("mass", z.mass, 1, 0.0);
+  f("density", z.density, 1, 0.0);
+  f("specific_energy", z.specific_energy, 1, 0.0);
+  f("pressure", z.pressure, 1, 0.0);
+  f("sound_speed", z.sound_speed, 1, 0.0);
+  f("volume", z.volume, 1, 0.0);
+  f("area", z.area, 1, 0.0);
+  f("viscous_speed", z.viscous_speed, 1, 0.0);
+  f("volume_change", z.volume_change, 1, 0.0);
+  f("corner_force", z.corner_force, 8, 0.0);
+  f("deviator_xx", z.deviator_xx, 1, 0.0);
+  f("deviator_yy", z.deviator_yy, 1, 0.0);
+  f("deviator_xy", z.deviator_xy, 1, 0.0);
+  f("deviator_zz", z.deviator_zz, 1, 0.0);
+  f("plastic_strain", z.plastic_strain, 1, 0.0);
+  f("hourglass_x", z.hourglass_x, 1, 0.0);
+  f("hourglass_y", z.hourglass_y, 1, 0.0);
+  f("edge_before", z.edge_before, 1, none);
+  f("edge_after", z.edge_after, 1, none);
+  f("neighbour", z.neighbour, 1, none);
+  f("corner_mass", z.corner_mass, 4, 0.0);
+  f("damaged", z.damaged, 1, std::uint8_t{0});
+  f("damage_time", z.damage_time, 1, -1.0);
+  f("damage_criterion", z.damage_criterion, 1, std::uint8_t{0});
+  f("initial_altitude", z.initial_altitude, 1, 0.0);
+  f("stable_time_step", z.stable_time_step, 1, 0.0);
+}
+
+// A field added to NodeFields or ZoneFields without its registry line changes these sizes: the build
+// stops here (every member is a std::vector of 24 bytes, plus ZoneFields' neighbours_built flag).
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(NodeFields) == 14 * 24,
+              "NodeFields changed: add the field to for_each_node_field");
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 29 * 24 + 8,
+              "ZoneFields changed: add the field to for_each_zone_field");
+
 struct Mesh {
   NodeFields nodes;
   ZoneFields zones;
