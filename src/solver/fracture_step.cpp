@@ -1,10 +1,12 @@
-// Steps 6 and 7 of the time step (DESIGN.md section 2): fracture criteria on intact zones, and the
-// conversion of fully fractured zones into free elements (Gulidov & Shabalin 1996).
+// Steps 6 and 7 of the time step (docs/architecture.md): fracture criteria on intact zones (the
+// fracture module's driver, fracture/damage.hpp), and the conversion of fully fractured zones into free
+// elements (Gulidov & Shabalin 1996).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
+#include "krug/fracture/damage.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug {
@@ -22,38 +24,11 @@ bool has_inverted_corner(const quad::Corners& x, const ZoneCorners& n) {
 }  // namespace
 
 void Simulation::evaluate_fracture() {
-  const bool axisymmetric = geometry_ == GeometryKind::axisymmetric;
-  ZoneFields& zones = mesh_.zones;
-  const NodeFields& nodes = mesh_.nodes;
   const double now = time_ + time_step_next_;  // the state just computed is at t^{n+1}
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    const fracture::FractureLimits& limits = fracture_limits_[b];
-    if (!limits.any()) continue;
-    const Body& body = bodies_[b];
-    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      if (!zones.active[z] || zones.damaged[z]) continue;
-      const ZoneCorners& n = zones.corners[z];
-      const quad::Corners x = mesh_.corner_positions(z);
-      const quad::Corners x0{Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
-                             Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
-      const double initial_area = quad::area(x0);
-      double f11, f12, f21, f22;
-      fracture::deformation_gradient(x, quad::area_gradient(x0), initial_area, f11, f12, f21, f22);
-      // Hoop stretch r/R with the zone's mean radii V/A (axisymmetric); 1 in planar strain.
-      const double hoop = axisymmetric ? (zones.volume[z] / zones.area[z]) / (quad::axisymmetric_volume(x0) / initial_area) : 1.0;
-      const fracture::Stretches stretch = fracture::principal_stretches(f11, f12, f21, f22, hoop);
-      const fracture::PrincipalStress stress = fracture::principal_stress(
-          zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z], zones.pressure[z]);
-      const fracture::Criterion fired = fracture::exceeded(limits, stretch, stress, zones.specific_energy[z]);
-      if (fired == fracture::Criterion::none) continue;
-      zones.damaged[z] = 1;
-      zones.damage_time[z] = now;
-      zones.damage_criterion[z] = static_cast<std::uint8_t>(fired);
-      zones.deviator_xx[z] = zones.deviator_yy[z] = zones.deviator_xy[z] = zones.deviator_zz[z] = 0.0;
-      zones.pressure[z] = std::max(zones.pressure[z], 0.0);
-      zones.hourglass_x[z] = zones.hourglass_y[z] = 0.0;
-      ++fracture_counts_[b].damaged;
-    }
+    if (!fracture_limits_[b].any()) continue;
+    fracture_counts_[b].damaged +=
+        fracture::damage_zones(mesh_, bodies_[b].zone_begin, bodies_[b].zone_end, fracture_limits_[b], geometry_, now);
   }
 }
 
