@@ -11,10 +11,8 @@ namespace krug {
 
 // Zones (or nodes) per block, from the loop's length alone (never from the number of threads): an
 // eighth of the loop, at least 1 024 and at most 4 096. Large blocks keep the limiter sharing, which a
-// block boundary interrupts (a 400-zone-wide grid in blocks of 1 024 recomputed 40 % of its limiters
-// and ran 1.5 times slower on two threads than in blocks of 4 096); small loops, such as the bodies of
-// the paper's case (1 700 to 2 600 zones), still get two blocks or more (1.4 times faster on two free
-// cores, docs/performance.md).
+// block boundary interrupts; small loops still get two blocks or more. The measurements behind the
+// bounds are in docs/performance.md ("Two threads").
 inline constexpr Index smallest_block = 1024;
 inline constexpr Index largest_block = 4096;
 

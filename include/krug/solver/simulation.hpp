@@ -158,8 +158,9 @@ class Simulation {
   void compute_forces();          // 1. F^n: corner forces of every zone
   void update_area_weighted_scale();  // s_p = M_p / M^A_p and the booking weights, at the current positions (area-weighted RZ)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
-  void solve_contact_reactions(); // 3. R from predicted gaps (no contact pairs yet)
-  void correct_and_move();        // 4. u^{n+1/2} = u* + dt^n R / M, x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
+  void solve_contact_reactions(); // 3. R from the predicted gaps; the contact solver applies it as it goes:
+                                  //    u^{n+1/2} = u* + dt^n R / M (nothing without contact)
+  void correct_and_move();        // 4. the contact and boundary work of R; x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
   void evaluate_fracture();       // 6. criteria (1) on intact zones; damage is permanent
   void convert_fractured_zones(); // 7. fully fractured surface zones -> particles (one layer per step)
