@@ -24,25 +24,25 @@ bool has_inverted_corner(const quad::Corners& x, const ZoneCorners& n) {
 }  // namespace
 
 void Simulation::evaluate_fracture() {
-  const double now = time_ + time_step_next_;  // the state just computed is at t^{n+1}
+  const double now = state_.time + state_.time_step_next;  // the state just computed is at t^{n+1}
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (!fracture_limits_[b].any()) continue;
-    fracture_counts_[b].damaged +=
-        fracture::damage_zones(mesh_, bodies_[b].zone_begin, bodies_[b].zone_end, fracture_limits_[b], geometry_, now);
+    state_.fracture_counts[b].damaged +=
+        fracture::damage_zones(state_.mesh, bodies_[b].zone_begin, bodies_[b].zone_end, fracture_limits_[b], geometry_, now);
   }
 }
 
 bool Simulation::face_is_free(Index zone, int edge) const {
-  const ZoneCorners& n = mesh_.zones.corners[zone];
+  const ZoneCorners& n = state_.mesh.zones.corners[zone];
   const Index a = n[edge], b = n[quad::next(edge)];
-  if (a == b || mesh_.zones.neighbour[zone][edge] >= 0) return false;
+  if (a == b || state_.mesh.zones.neighbour[zone][edge] >= 0) return false;
   // Not on the axis, a symmetry plane or a fixed rim: both ends held in the same direction.
   const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
   return !((held_x_[ua] && held_x_[ub]) || (held_y_[ua] && held_y_[ub]));
 }
 
 void Simulation::convert_fractured_zones() {
-  ZoneFields& zones = mesh_.zones;
+  ZoneFields& zones = state_.mesh.zones;
   const FractureControls& fc = controls_.fracture;
   // Median zone time step, for the floor below which damaged zones convert instead of driving dt.
   std::vector<double> steps;
@@ -58,7 +58,7 @@ void Simulation::convert_fractured_zones() {
     if (!body.erosion().any()) continue;
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z] || zones.damaged[z]) continue;
-      const quad::Corners x = mesh_.corner_positions(z);
+      const quad::Corners x = state_.mesh.corner_positions(z);
       if (body.erosion().strained(zones.plastic_strain[z]) ||
           body.erosion().collapsed(quad::smallest_altitude(x, zones.area[z]), zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
@@ -80,7 +80,7 @@ void Simulation::convert_fractured_zones() {
     const double reference_density = materials_[static_cast<std::size_t>(body.material)].reference_density;
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z] || !zones.damaged[z]) continue;
-      const quad::Corners x = mesh_.corner_positions(z);
+      const quad::Corners x = state_.mesh.corner_positions(z);
       const double altitude = quad::smallest_altitude(x, zones.area[z]);
       const double chi = fracture::loosening(zones.density[z], reference_density);
       const bool fully = fracture::fully_fractured(chi, fracture_limits_[b].loosening, altitude,
@@ -100,23 +100,23 @@ void Simulation::convert_fractured_zones() {
   for (const auto& [z, rule] : chosen) convert_zone(z, rule);
   topology_changed_ = true;
   // The step limit now comes from the zones that remain.
-  stable_time_step_ = std::numeric_limits<double>::infinity();
+  state_.stable_time_step = std::numeric_limits<double>::infinity();
   for (Index z = 0; z < zones.size(); ++z) {
-    if (zones.active[z] && zones.stable_time_step[z] < stable_time_step_) {
-      stable_time_step_ = zones.stable_time_step[z];
-      controlling_zone_ = z;
+    if (zones.active[z] && zones.stable_time_step[z] < state_.stable_time_step) {
+      state_.stable_time_step = zones.stable_time_step[z];
+      state_.controlling_zone = z;
     }
   }
   measure_ledger();
 }
 
 void Simulation::convert_zone(Index z, ConversionRule rule) {
-  ZoneFields& zones = mesh_.zones;
-  NodeFields& nodes = mesh_.nodes;
+  ZoneFields& zones = state_.mesh.zones;
+  NodeFields& nodes = state_.mesh.nodes;
   const ZoneCorners n = zones.corners[z];
   const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
   const double mass = zones.mass[z];
-  const quad::Corners x = mesh_.corner_positions(z);
+  const quad::Corners x = state_.mesh.corner_positions(z);
   const double area = zones.area[z];
 
   double corner_total = 0.0;
@@ -132,8 +132,8 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
     // 2 x 2 sub-particles: each corner's mass with its node's velocity (kinetic energy exact).
     for (int p = 0; p < 4; ++p) {
       const quad::Corners region = quad::corner_region(x, p);
-      particles_.add(quad::centre(region), nodes.velocity(n[p]), corner_mass[p] * mass / corner_total,
-                     0.25 * std::sqrt(area), origin, time_ + time_step_next_);
+      state_.particles.add(quad::centre(region), nodes.velocity(n[p]), corner_mass[p] * mass / corner_total,
+                     0.25 * std::sqrt(area), origin, state_.time + state_.time_step_next);
     }
   } else {
     // One particle inscribed in the zone: radius sqrt(A)/2, the zone's mass and momentum.
@@ -141,10 +141,10 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
       const Vec2 d = nodes.velocity(n[p]) - mean_velocity;
       kinetic_defect += 0.5 * corner_mass[p] * dot(d, d);
     }
-    particles_.add(quad::centre(x), mean_velocity, mass, 0.5 * std::sqrt(area), origin, time_ + time_step_next_);
+    state_.particles.add(quad::centre(x), mean_velocity, mass, 0.5 * std::sqrt(area), origin, state_.time + state_.time_step_next);
   }
-  ledger_.energy.converted += mass * zones.specific_energy[z] + kinetic_defect;
-  ledger_.energy.internal -= mass * zones.specific_energy[z];
+  state_.ledger.energy.converted += mass * zones.specific_energy[z] + kinetic_defect;
+  state_.ledger.energy.internal -= mass * zones.specific_energy[z];
 
   // The zone's share of each corner node leaves with it; a node left without zones is removed.
   for (int p = 0; p < 4; ++p) {
@@ -154,7 +154,7 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
     if (p > 0 && n[p] == n[p - 1]) continue;
     if (p == 3 && n[3] == n[0]) continue;
     const auto node = static_cast<std::size_t>(n[p]);
-    if (--zones_per_node_[node] == 0) nodes.mass[n[p]] = 0.0;
+    if (--state_.zones_per_node[node] == 0) nodes.mass[n[p]] = 0.0;
     const double inverse = nodes.mass[n[p]] > 0.0 ? 1.0 / nodes.mass[n[p]] : 0.0;
     nodes.inv_mass_x[n[p]] = held_x_[node] ? 0.0 : inverse;
     nodes.inv_mass_y[n[p]] = held_y_[node] ? 0.0 : inverse;
@@ -170,17 +170,17 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
   }
   const std::size_t b = static_cast<std::size_t>(zones.body[z]);
   if (rule == ConversionRule::erosion) {
-    ++fracture_counts_[b].eroded;
-    fracture_counts_[b].eroded_mass += mass;
+    ++state_.fracture_counts[b].eroded;
+    state_.fracture_counts[b].eroded_mass += mass;
     return;
   }
-  ++fracture_counts_[b].converted;
-  if (rule == ConversionRule::interior) ++fracture_counts_[b].interior_conversions;
-  fracture_counts_[b].converted_mass += mass;
+  ++state_.fracture_counts[b].converted;
+  if (rule == ConversionRule::interior) ++state_.fracture_counts[b].interior_conversions;
+  state_.fracture_counts[b].converted_mass += mass;
 }
 
 std::vector<Fragment> Simulation::fragments(const Body& body) const {
-  std::vector<Fragment> pieces = connected_pieces(mesh_, body.zone_begin, body.zone_end);
+  std::vector<Fragment> pieces = connected_pieces(state_.mesh, body.zone_begin, body.zone_end);
   for (Fragment& f : pieces) f.mass *= whole_body_factor();
   std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
   return pieces;

@@ -51,13 +51,13 @@ ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model
 
 Simulation::Simulation(SimulationSetup setup)
     : geometry_(setup.geometry),
-      mesh_(std::move(setup.mesh)),
       materials_(std::move(setup.materials)),
       bodies_(std::move(setup.bodies)),
       constraints_(std::move(setup.constraints)),
       controls_(setup.controls) {
-  fracture_counts_.assign(bodies_.size(), FractureCounts{});
-  body_plastic_work_.assign(bodies_.size(), 0.0);
+  state_.mesh = std::move(setup.mesh);
+  state_.fracture_counts.assign(bodies_.size(), FractureCounts{});
+  state_.body_plastic_work.assign(bodies_.size(), 0.0);
   for (const Body& body : bodies_) {
     const auto m = static_cast<std::size_t>(body.material);
     fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
@@ -72,14 +72,14 @@ Simulation::Simulation(SimulationSetup setup)
   if (!setup.contact.empty()) {
     std::vector<std::pair<Index, Index>> ranges;
     for (const Body& body : bodies_) ranges.emplace_back(body.zone_begin, body.zone_end);
-    contact_ = contact::ContactSolver(std::move(setup.contact), mesh_, ranges);
+    contact_ = contact::ContactSolver(std::move(setup.contact), state_.mesh, ranges);
   }
 }
 
 void Simulation::initialise() {
   const bool axisymmetric = geometry_ == GeometryKind::axisymmetric;
-  NodeFields& nodes = mesh_.nodes;
-  ZoneFields& zones = mesh_.zones;
+  NodeFields& nodes = state_.mesh.nodes;
+  ZoneFields& zones = state_.mesh.zones;
   if (!(controls_.end_time > 0.0)) throw InputError("end_time must be positive");
 
   // Zone geometry and mass; nodal mass from the r-weighted corner volumes of the median mesh.
@@ -87,7 +87,7 @@ void Simulation::initialise() {
   for (const Body& body : bodies_) {
     const Material& material = materials_.at(static_cast<std::size_t>(body.material));
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      const quad::Corners x = mesh_.corner_positions(z);
+      const quad::Corners x = state_.mesh.corner_positions(z);
       const double area = quad::area(x);
       const double volume = axisymmetric ? quad::axisymmetric_volume(x) : area;
       if (!(area > 0.0) || !(volume > 0.0)) {
@@ -116,14 +116,14 @@ void Simulation::initialise() {
   nodes.x0 = nodes.x;
   nodes.y0 = nodes.y;
   if (fracture_enabled_) {
-    zones_per_node_.assign(static_cast<std::size_t>(nodes.size()), 0);
+    state_.zones_per_node.assign(static_cast<std::size_t>(nodes.size()), 0);
     for (Index z = 0; z < zones.size(); ++z) {
       if (!zones.active[z]) continue;
       const ZoneCorners& n = zones.corners[z];
       for (int p = 0; p < 4; ++p) {
         if (p > 0 && n[p] == n[p - 1]) continue;
         if (p == 3 && n[3] == n[0]) continue;
-        ++zones_per_node_[static_cast<std::size_t>(n[p])];
+        ++state_.zones_per_node[static_cast<std::size_t>(n[p])];
       }
     }
   }
@@ -161,8 +161,8 @@ void Simulation::initialise() {
       }
     }, material.eos);
   }
-  build_edge_continuations(mesh_);
-  node_corners_ = node_corners(mesh_);
+  build_edge_continuations(state_.mesh);
+  node_corners_ = node_corners(state_.mesh);
   share_edge_limiters();
   if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
     area_weighted_work_.assign(zones.corner_force.size(), 0.0);  // its presence selects the form's per-step arrays
@@ -180,25 +180,25 @@ void Simulation::initialise() {
     for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
     const double speed = zones.sound_speed[z] + 2.0 * spread;
     if (speed <= 0.0) continue;
-    const double dt = controls_.cfl * quad::smallest_altitude(mesh_.corner_positions(z), zones.area[z]) / speed;
-    if (dt < stable) { stable = dt; controlling_zone_ = z; }
+    const double dt = controls_.cfl * quad::smallest_altitude(state_.mesh.corner_positions(z), zones.area[z]) / speed;
+    if (dt < stable) { stable = dt; state_.controlling_zone = z; }
   }
-  stable_time_step_ = stable;
+  state_.stable_time_step = stable;
   double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable;
   if (!std::isfinite(first)) first = 1e-6 * controls_.end_time;
   first = std::min({first, stable, controls_.max_time_step, controls_.end_time});
-  time_step_previous_ = 0.0;
-  time_step_next_ = first;
-  time_step_floor_ = controls_.time_step_floor > 0.0 ? controls_.time_step_floor : 1e-9 * first;
+  state_.time_step_previous = 0.0;
+  state_.time_step_next = first;
+  state_.time_step_floor = controls_.time_step_floor > 0.0 ? controls_.time_step_floor : 1e-9 * first;
 
   measure_ledger();
-  ledger_.energy.internal = 0.0;
+  state_.ledger.energy.internal = 0.0;
   for (Index z = 0; z < zones.size(); ++z) {
-    if (zones.active[z]) ledger_.energy.internal += zones.mass[z] * zones.specific_energy[z];
+    if (zones.active[z]) state_.ledger.energy.internal += zones.mass[z] * zones.specific_energy[z];
   }
-  ledger_.initial_total_energy = ledger_.energy.total();
-  ledger_.initial_mass = ledger_.mass;
-  ledger_.initial_axial_momentum = ledger_.axial_momentum;
+  state_.ledger.initial_total_energy = state_.ledger.energy.total();
+  state_.ledger.initial_mass = state_.ledger.mass;
+  state_.ledger.initial_axial_momentum = state_.ledger.axial_momentum;
 }
 
 void Simulation::step() {
@@ -215,61 +215,29 @@ void Simulation::step() {
 }
 
 bool Simulation::finished() const {
-  return time_ >= controls_.end_time * (1.0 - 1e-12) || cycle_ >= controls_.max_cycles;
+  return state_.time >= controls_.end_time * (1.0 - 1e-12) || state_.cycle >= controls_.max_cycles;
 }
 
-SimulationState Simulation::state() const {
-  SimulationState s;
-  s.mesh = mesh_;
-  s.particles = particles_;
-  s.ledger = ledger_;
-  s.fracture_counts = fracture_counts_;
-  s.body_plastic_work = body_plastic_work_;
-  s.zones_per_node = zones_per_node_;
-  s.time = time_;
-  s.cycle = cycle_;
-  s.zone_cycles = zone_cycles_;
-  s.time_step_previous = time_step_previous_;
-  s.time_step_next = time_step_next_;
-  s.time_step_floor = time_step_floor_;
-  s.stable_time_step = stable_time_step_;
-  s.controlling_zone = controlling_zone_;
-  s.deepest_contact_gap = deepest_contact_gap_;
-  return s;
-}
+SimulationState Simulation::state() const { return state_; }
 
 void Simulation::restore(SimulationState s) {
-  if (s.mesh.nodes.size() != mesh_.nodes.size() || s.mesh.zones.size() != mesh_.zones.size() ||
+  if (s.mesh.nodes.size() != state_.mesh.nodes.size() || s.mesh.zones.size() != state_.mesh.zones.size() ||
       s.fracture_counts.size() != bodies_.size() || s.body_plastic_work.size() != bodies_.size()) {
     throw InputError("restart: the checkpoint does not belong to this scenario (mesh sizes or body counts differ)");
   }
-  mesh_ = std::move(s.mesh);
-  particles_ = std::move(s.particles);
-  ledger_ = s.ledger;
-  fracture_counts_ = std::move(s.fracture_counts);
-  body_plastic_work_ = std::move(s.body_plastic_work);
-  zones_per_node_ = std::move(s.zones_per_node);
-  time_ = s.time;
-  cycle_ = s.cycle;
-  zone_cycles_ = s.zone_cycles;
-  time_step_previous_ = s.time_step_previous;
-  time_step_next_ = s.time_step_next;
-  time_step_floor_ = s.time_step_floor;
-  stable_time_step_ = s.stable_time_step;
-  controlling_zone_ = s.controlling_zone;
-  deepest_contact_gap_ = s.deepest_contact_gap;
+  state_ = std::move(s);
   topology_changed_ = true;  // contact boundaries are rebuilt from the restored connectivity
   share_edge_limiters();
 }
 
 void Simulation::share_edge_limiters() {
   if (controls_.viscosity.model != ViscosityModel::edge || !controls_.viscosity.limiter) return;
-  mirrored_edges_ = mirrored_edge_slots(mesh_);
+  mirrored_edges_ = mirrored_edge_slots(state_.mesh);
   edge_limiters_.assign(mirrored_edges_.size(), 0.0);
 }
 
 void Simulation::cap_next_time_step(double dt) {
-  time_step_next_ = std::min(time_step_next_, dt);
+  state_.time_step_next = std::min(state_.time_step_next, dt);
 }
 
 void Simulation::update_area_weighted_scale() {
@@ -277,13 +245,13 @@ void Simulation::update_area_weighted_scale() {
   // positions: rho A = m / (V / A) changes as the zone moves off or towards the axis, so s_p = M_p / M^A_p
   // is renewed every step (held at its initial value, it let a converging sphere accelerate as if its
   // area mass had not grown: the spherical Noh stalled at a quarter of its density).
-  const NodeFields& nodes = mesh_.nodes;
-  const ZoneFields& zones = mesh_.zones;
+  const NodeFields& nodes = state_.mesh.nodes;
+  const ZoneFields& zones = state_.mesh.zones;
   area_weighted_scale_.assign(static_cast<std::size_t>(nodes.size()), 0.0);
   for (const Body& body : bodies_) {
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z]) continue;
-      const quad::Corners x = mesh_.corner_positions(z);
+      const quad::Corners x = state_.mesh.corner_positions(z);
       const double area = quad::area(x);
       const double volume = quad::axisymmetric_volume(x);
       const double corner_area_mass = 0.25 * zones.mass[z] * area / volume;
@@ -307,7 +275,7 @@ void Simulation::compute_forces() {
   if (!area_weighted_work_.empty()) update_area_weighted_scale();
   const AreaWeightedArrays area_weighted{area_weighted_scale_.data(), area_weighted_booking_.data(),
                                          area_weighted_work_.data()};
-  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  const double dt_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
     ZoneForceParams params;
@@ -316,28 +284,28 @@ void Simulation::compute_forces() {
     params.viscosity = controls_.viscosity;
     params.hourglass = controls_.hourglass;
     params.axisymmetric_form = controls_.axisymmetric_form;
-    params.previous_time_step = time_step_previous_;
+    params.previous_time_step = state_.time_step_previous;
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
     const ArtificialPower power =
-        dispatch_zone_forces(geometry_, controls_.viscosity.model, controls_.threads, mesh_, body, params,
+        dispatch_zone_forces(geometry_, controls_.viscosity.model, controls_.threads, state_.mesh, body, params,
                              area_weighted, limiters);
-    ledger_.energy.viscous += dt_mid * power.viscous;
-    ledger_.energy.hourglass += dt_mid * power.hourglass;
+    state_.ledger.energy.viscous += dt_mid * power.viscous;
+    state_.ledger.energy.hourglass += dt_mid * power.hourglass;
   }
-  for_each_block(0, mesh_.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
-    sum_corner_forces(mesh_, node_corners_, first, last);
+  for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
+    sum_corner_forces(state_.mesh, node_corners_, first, last);
   });
 }
 
 void Simulation::predict_velocities() {
-  NodeFields& nodes = mesh_.nodes;
-  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  NodeFields& nodes = state_.mesh.nodes;
+  const double dt_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
   // u^{n-1/2} becomes u_old by exchanging the arrays; every u is then written from it.
   nodes.u_old.swap(nodes.u);
   nodes.v_old.swap(nodes.v);
-  particles_.u_old = particles_.u;  // particles feel no F: u* = u^{n-1/2}
-  particles_.v_old = particles_.v;
+  state_.particles.u_old = state_.particles.u;  // particles feel no F: u* = u^{n-1/2}
+  state_.particles.v_old = state_.particles.v;
   for_each_block(0, nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     for (Index p = first; p < last; ++p) {
       nodes.u[p] = nodes.u_old[p] + dt_mid * nodes.force_x[p] * nodes.inv_mass_x[p];
@@ -347,22 +315,22 @@ void Simulation::predict_velocities() {
   // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
   for (const NodeConstraint& c : constraints_) {
     if (c.fix_x) {
-      ledger_.energy.boundary -= dt_mid * nodes.force_x[c.node] * nodes.u[c.node];
-      ledger_.axial_boundary_impulse -= dt_mid * nodes.force_x[c.node];
+      state_.ledger.energy.boundary -= dt_mid * nodes.force_x[c.node] * nodes.u[c.node];
+      state_.ledger.axial_boundary_impulse -= dt_mid * nodes.force_x[c.node];
     }
-    if (c.fix_y) ledger_.energy.boundary -= dt_mid * nodes.force_y[c.node] * nodes.v[c.node];
+    if (c.fix_y) state_.ledger.energy.boundary -= dt_mid * nodes.force_y[c.node] * nodes.v[c.node];
   }
 }
 
 void Simulation::solve_contact_reactions() {
   if (contact_.empty()) return;  // R = 0: a scene without contact pays nothing here
-  const double dt_mid = 0.5 * (time_step_previous_ + time_step_next_);
+  const double dt_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
   if (topology_changed_) {
-    contact_.rebuild_boundaries(mesh_);
+    contact_.rebuild_boundaries(state_.mesh);
     topology_changed_ = false;
   }
-  last_contact_ = contact_.solve(mesh_, particles_, dt_mid, time_step_next_);
-  deepest_contact_gap_ = std::min(deepest_contact_gap_, last_contact_.deepest_gap);
+  last_contact_ = contact_.solve(state_.mesh, state_.particles, dt_mid, state_.time_step_next);
+  state_.deepest_contact_gap = std::min(state_.deepest_contact_gap, last_contact_.deepest_gap);
 }
 
 void Simulation::book_contact_work(double dt_mid) {
@@ -370,53 +338,53 @@ void Simulation::book_contact_work(double dt_mid) {
   // boundary cancels R, doing -R u dt (and taking the axial impulse). The overlap line is the part of
   // it done by the contacts that carry a pre-existing overlap (DESIGN.md section 3): the rest, the work
   // of contacts that started the step apart, is dissipative.
-  const NodeFields& nodes = mesh_.nodes;
+  const NodeFields& nodes = state_.mesh.nodes;
   for (const contact::ContactPoint point : contact_.touched_points()) {
     const Vec2 r = contact_.reaction_force(point);
     if (point.is_particle()) {
       const Index i = point.index;
-      const Vec2 ubar{0.5 * (particles_.u_old[i] + particles_.u[i]), 0.5 * (particles_.v_old[i] + particles_.v[i])};
-      ledger_.energy.contact += dt_mid * dot(r, ubar);
-      ledger_.energy.overlap += dt_mid * dot(contact_.overlap_reaction_force(point), ubar);
+      const Vec2 ubar{0.5 * (state_.particles.u_old[i] + state_.particles.u[i]), 0.5 * (state_.particles.v_old[i] + state_.particles.v[i])};
+      state_.ledger.energy.contact += dt_mid * dot(r, ubar);
+      state_.ledger.energy.overlap += dt_mid * dot(contact_.overlap_reaction_force(point), ubar);
       continue;
     }
     const Index p = point.index;
     const double ubar = 0.5 * (nodes.u_old[p] + nodes.u[p]);
     const double vbar = 0.5 * (nodes.v_old[p] + nodes.v[p]);
-    ledger_.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
+    state_.ledger.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
     const Vec2 overlap = contact_.overlap_reaction_force(point);
-    ledger_.energy.overlap += dt_mid * (overlap.x * ubar + overlap.y * vbar);
+    state_.ledger.energy.overlap += dt_mid * (overlap.x * ubar + overlap.y * vbar);
     if (held_x_[static_cast<std::size_t>(p)]) {
-      ledger_.energy.boundary -= dt_mid * r.x * nodes.u[p];
-      ledger_.axial_boundary_impulse -= dt_mid * r.x;
+      state_.ledger.energy.boundary -= dt_mid * r.x * nodes.u[p];
+      state_.ledger.axial_boundary_impulse -= dt_mid * r.x;
     }
-    if (held_y_[static_cast<std::size_t>(p)]) ledger_.energy.boundary -= dt_mid * r.y * nodes.v[p];
+    if (held_y_[static_cast<std::size_t>(p)]) state_.ledger.energy.boundary -= dt_mid * r.y * nodes.v[p];
   }
 }
 
 void Simulation::correct_and_move() {
-  NodeFields& nodes = mesh_.nodes;
-  const double dt = time_step_next_;
-  if (!contact_.empty()) book_contact_work(0.5 * (time_step_previous_ + time_step_next_));
+  NodeFields& nodes = state_.mesh.nodes;
+  const double dt = state_.time_step_next;
+  if (!contact_.empty()) book_contact_work(0.5 * (state_.time_step_previous + state_.time_step_next));
   for_each_block(0, nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     for (Index p = first; p < last; ++p) {
       nodes.x[p] += dt * nodes.u[p];
       nodes.y[p] += dt * nodes.v[p];
     }
   });
-  for (Index i = 0; i < particles_.size(); ++i) {
-    particles_.x[i] += dt * particles_.u[i];
-    particles_.y[i] += dt * particles_.v[i];
+  for (Index i = 0; i < state_.particles.size(); ++i) {
+    state_.particles.x[i] += dt * state_.particles.u[i];
+    state_.particles.y[i] += dt * state_.particles.v[i];
   }
 }
 
 void Simulation::update_zones() {
   ZoneUpdateParams params;
-  params.time_step_mid = 0.5 * (time_step_previous_ + time_step_next_);
-  params.time_step_next = time_step_next_;
+  params.time_step_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
+  params.time_step_next = state_.time_step_next;
   params.cfl = controls_.cfl;
   params.max_volume_change = controls_.max_volume_change;
-  stable_time_step_ = std::numeric_limits<double>::infinity();
+  state_.stable_time_step = std::numeric_limits<double>::infinity();
   double internal = 0.0;
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
@@ -427,71 +395,71 @@ void Simulation::update_zones() {
     const std::vector<ZoneUpdateResult> results = std::visit([&](const auto& eos, const auto& strength) {
       return block_results<ZoneUpdateResult>(body.zone_begin, body.zone_end, controls_.threads, [&](Index first, Index last) {
         return geometry_ == GeometryKind::axisymmetric
-                   ? krug::update_zones<GeometryKind::axisymmetric>(mesh_, first, last, eos, strength, params, work_correction)
-                   : krug::update_zones<GeometryKind::planar>(mesh_, first, last, eos, strength, params, work_correction);
+                   ? krug::update_zones<GeometryKind::axisymmetric>(state_.mesh, first, last, eos, strength, params, work_correction)
+                   : krug::update_zones<GeometryKind::planar>(state_.mesh, first, last, eos, strength, params, work_correction);
       });
     }, material.eos, material.strength);
     for (const ZoneUpdateResult& result : results) {
-      ledger_.energy.plastic += result.plastic_work;
-      body_plastic_work_[static_cast<std::size_t>(&body - bodies_.data())] += result.plastic_work;
+      state_.ledger.energy.plastic += result.plastic_work;
+      state_.body_plastic_work[static_cast<std::size_t>(&body - bodies_.data())] += result.plastic_work;
       if (result.failed_zone >= 0) {
         fail("zone tangled (non-positive area) or its energy is not finite", result.failed_zone);
       }
       internal += result.internal_energy;
-      if (result.stable_time_step < stable_time_step_) {
-        stable_time_step_ = result.stable_time_step;
-        controlling_zone_ = result.controlling_zone;
+      if (result.stable_time_step < state_.stable_time_step) {
+        state_.stable_time_step = result.stable_time_step;
+        state_.controlling_zone = result.controlling_zone;
       }
     }
-    zone_cycles_ += body.zone_end - body.zone_begin;
+    state_.zone_cycles += body.zone_end - body.zone_begin;
   }
-  ledger_.energy.internal = internal;
+  state_.ledger.energy.internal = internal;
   measure_ledger();
 }
 
 void Simulation::choose_time_step() {
-  time_ += time_step_next_;
-  ++cycle_;
-  time_step_previous_ = time_step_next_;
-  const double remaining = controls_.end_time - time_;
-  double dt = std::min({stable_time_step_, controls_.time_step_growth * time_step_previous_, controls_.max_time_step});
-  time_step_limit_ = dt == stable_time_step_ ? TimeStepLimit::zone
+  state_.time += state_.time_step_next;
+  ++state_.cycle;
+  state_.time_step_previous = state_.time_step_next;
+  const double remaining = controls_.end_time - state_.time;
+  double dt = std::min({state_.stable_time_step, controls_.time_step_growth * state_.time_step_previous, controls_.max_time_step});
+  time_step_limit_ = dt == state_.stable_time_step ? TimeStepLimit::zone
                      : dt == controls_.max_time_step ? TimeStepLimit::maximum : TimeStepLimit::growth;
-  for (Index i = 0; i < particles_.size(); ++i) {  // a particle moves at most a fraction of its radius
-    const double speed = norm(particles_.velocity(i));
-    if (speed > 0.0 && controls_.fracture.particle_travel * particles_.radius[i] / speed < dt) {
-      dt = controls_.fracture.particle_travel * particles_.radius[i] / speed;
+  for (Index i = 0; i < state_.particles.size(); ++i) {  // a particle moves at most a fraction of its radius
+    const double speed = norm(state_.particles.velocity(i));
+    if (speed > 0.0 && controls_.fracture.particle_travel * state_.particles.radius[i] / speed < dt) {
+      dt = controls_.fracture.particle_travel * state_.particles.radius[i] / speed;
       time_step_limit_ = TimeStepLimit::particle_travel;
     }
   }
-  if (remaining > 0.0 && dt < time_step_floor_) {
-    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s", dt, time_step_floor_), controlling_zone_);
+  if (remaining > 0.0 && dt < state_.time_step_floor) {
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s", dt, state_.time_step_floor), state_.controlling_zone);
   }
   if (remaining < dt) time_step_limit_ = TimeStepLimit::end_time;
-  time_step_next_ = std::min(dt, std::max(remaining, 0.0));
-  if (time_step_next_ <= 0.0) time_step_next_ = dt;  // finished(); keeps a meaningful value
+  state_.time_step_next = std::min(dt, std::max(remaining, 0.0));
+  if (state_.time_step_next <= 0.0) state_.time_step_next = dt;  // finished(); keeps a meaningful value
 }
 
 void Simulation::measure_ledger() {
-  const NodeFields& nodes = mesh_.nodes;
+  const NodeFields& nodes = state_.mesh.nodes;
   double kinetic = 0.0, momentum = 0.0;
   for (Index p = 0; p < nodes.size(); ++p) {
     kinetic += nodes.mass[p] * (nodes.u[p] * nodes.u[p] + nodes.v[p] * nodes.v[p]);
     momentum += nodes.mass[p] * nodes.u[p];
   }
   double mass = 0.0;
-  for (Index i = 0; i < particles_.size(); ++i) {
-    kinetic += particles_.mass[i] * (particles_.u[i] * particles_.u[i] + particles_.v[i] * particles_.v[i]);
-    momentum += particles_.mass[i] * particles_.u[i];
-    mass += particles_.mass[i];
+  for (Index i = 0; i < state_.particles.size(); ++i) {
+    kinetic += state_.particles.mass[i] * (state_.particles.u[i] * state_.particles.u[i] + state_.particles.v[i] * state_.particles.v[i]);
+    momentum += state_.particles.mass[i] * state_.particles.u[i];
+    mass += state_.particles.mass[i];
   }
-  ledger_.energy.kinetic = 0.5 * kinetic;
-  ledger_.axial_momentum = momentum;
-  ledger_.max_kinetic = std::max(ledger_.max_kinetic, ledger_.energy.kinetic);
-  for (Index z = 0; z < mesh_.zones.size(); ++z) {
-    if (mesh_.zones.active[z]) mass += mesh_.zones.mass[z];
+  state_.ledger.energy.kinetic = 0.5 * kinetic;
+  state_.ledger.axial_momentum = momentum;
+  state_.ledger.max_kinetic = std::max(state_.ledger.max_kinetic, state_.ledger.energy.kinetic);
+  for (Index z = 0; z < state_.mesh.zones.size(); ++z) {
+    if (state_.mesh.zones.active[z]) mass += state_.mesh.zones.mass[z];
   }
-  ledger_.mass = mass;
+  state_.ledger.mass = mass;
 }
 
 void Simulation::fail(const std::string& what, Index zone) const {
@@ -503,9 +471,9 @@ void Simulation::fail(const std::string& what, Index zone) const {
       local = zone - body.zone_begin;
     }
   }
-  throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, time_,
-                                     cycle_, what),
-                         body_name, local, time_);
+  throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, state_.time,
+                                     state_.cycle, what),
+                         body_name, local, state_.time);
 }
 
 Index Simulation::body_of_zone(Index zone) const {
@@ -516,7 +484,7 @@ Index Simulation::body_of_zone(Index zone) const {
 }
 
 BodySummary Simulation::summarise(const Body& body) const {
-  const NodeFields& nodes = mesh_.nodes;
+  const NodeFields& nodes = state_.mesh.nodes;
   BodySummary s;
   double mass = 0.0;
   Vec2 momentum, moment;
@@ -530,7 +498,7 @@ BodySummary Simulation::summarise(const Body& body) const {
     s.bbox_min = {std::min(s.bbox_min.x, nodes.x[p]), std::min(s.bbox_min.y, nodes.y[p])};
     s.bbox_max = {std::max(s.bbox_max.x, nodes.x[p]), std::max(s.bbox_max.y, nodes.y[p])};
   }
-  for (Index z = body.zone_begin; z < body.zone_end; ++z) s.zones += mesh_.zones.active[z] ? 1 : 0;
+  for (Index z = body.zone_begin; z < body.zone_end; ++z) s.zones += state_.mesh.zones.active[z] ? 1 : 0;
   s.mass = whole_body_factor() * mass;
   if (mass > 0.0) {
     s.velocity = (1.0 / mass) * momentum;

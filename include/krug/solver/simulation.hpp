@@ -111,28 +111,28 @@ class Simulation {
   bool finished() const;
 
   GeometryKind geometry() const { return geometry_; }
-  const Mesh& mesh() const { return mesh_; }
-  Mesh& mesh() { return mesh_; }
+  const Mesh& mesh() const { return state_.mesh; }
+  Mesh& mesh() { return state_.mesh; }
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<Material>& materials() const { return materials_; }
   const Controls& controls() const { return controls_; }
   Controls& controls() { return controls_; }
-  const Ledger& ledger() const { return ledger_; }
+  const Ledger& ledger() const { return state_.ledger; }
 
-  double time() const { return time_; }
-  long cycle() const { return cycle_; }
-  long zone_cycles() const { return zone_cycles_; }
-  double next_time_step() const { return time_step_next_; }
-  double last_time_step() const { return time_step_previous_; }
-  Index controlling_zone() const { return controlling_zone_; }
+  double time() const { return state_.time; }
+  long cycle() const { return state_.cycle; }
+  long zone_cycles() const { return state_.zone_cycles; }
+  double next_time_step() const { return state_.time_step_next; }
+  double last_time_step() const { return state_.time_step_previous; }
+  Index controlling_zone() const { return state_.controlling_zone; }
   // What set dt^{n+1/2} (with zone: the controlling zone), and the body owning a zone (-1 for none).
   TimeStepLimit time_step_limit() const { return time_step_limit_; }
   Index body_of_zone(Index zone) const;
   // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
-  double stable_time_step() const { return stable_time_step_; }
+  double stable_time_step() const { return state_.stable_time_step; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
-  double deepest_contact_gap() const { return deepest_contact_gap_; }
+  double deepest_contact_gap() const { return state_.deepest_contact_gap; }
 
   // Checkpoint and restart: state() after any step; restore() on a Simulation built from the same
   // setup continues the run exactly as if it had not stopped.
@@ -146,10 +146,10 @@ class Simulation {
   // Connected pieces of a body's remaining zones (by shared edges; connected_pieces), heaviest first,
   // masses for the whole body (x 2 pi in RZ).
   std::vector<Fragment> fragments(const Body& body) const;
-  const Particles& particles() const { return particles_; }
-  const FractureCounts& fracture_counts(Index body) const { return fracture_counts_[static_cast<std::size_t>(body)]; }
+  const Particles& particles() const { return state_.particles; }
+  const FractureCounts& fracture_counts(Index body) const { return state_.fracture_counts[static_cast<std::size_t>(body)]; }
   // Plastic work done in one body's zones so far (J per radian or per m; the ledger's plastic line is their sum).
-  double plastic_work(Index body) const { return body_plastic_work_[static_cast<std::size_t>(body)]; }
+  double plastic_work(Index body) const { return state_.body_plastic_work[static_cast<std::size_t>(body)]; }
   bool fracture_enabled() const { return fracture_enabled_; }
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
@@ -176,23 +176,19 @@ class Simulation {
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
   GeometryKind geometry_;
-  Mesh mesh_;
+  // The run state, the one record that checkpoints and restarts carry (its fields above: the mesh and
+  // its zone fields, particles, ledger, per-body records, the clock).
+  SimulationState state_;
   std::vector<Material> materials_;
   std::vector<Body> bodies_;
   std::vector<NodeConstraint> constraints_;
   std::vector<std::uint8_t> held_x_, held_y_;  // per node: DOF held by a condition
   contact::ContactSolver contact_;
-  Particles particles_;
   std::vector<fracture::FractureLimits> fracture_limits_;  // per body
-  std::vector<FractureCounts> fracture_counts_;           // per body
-  std::vector<double> body_plastic_work_;                 // per body
-  std::vector<Index> zones_per_node_;                     // active zones touching each node (fracture only)
   bool fracture_enabled_ = false;
   bool topology_changed_ = false;
   contact::ContactStatistics last_contact_;
-  double deepest_contact_gap_ = 0.0;
   Controls controls_;
-  Ledger ledger_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
   std::vector<double> area_weighted_booking_;  // its viscous/hourglass work weight: s_p, 0 on the axis
   std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
@@ -200,14 +196,6 @@ class Simulation {
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
 
-  double time_ = 0.0;
-  long cycle_ = 0;
-  long zone_cycles_ = 0;
-  double time_step_previous_ = 0.0;  // dt^{n-1/2}
-  double time_step_next_ = 0.0;      // dt^{n+1/2}
-  double time_step_floor_ = 0.0;
-  double stable_time_step_ = 0.0;    // from the last zone update
-  Index controlling_zone_ = -1;
   TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
 };
 
