@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "krug/fracture/damage.hpp"
+#include "krug/particles/conversion.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug {
@@ -111,64 +112,13 @@ void Simulation::convert_fractured_zones() {
 }
 
 void Simulation::convert_zone(Index z, ConversionRule rule) {
-  ZoneFields& zones = state_.mesh.zones;
-  NodeFields& nodes = state_.mesh.nodes;
-  const ZoneCorners n = zones.corners[z];
-  const double* corner_mass = &zones.corner_mass[4 * static_cast<std::size_t>(z)];
-  const double mass = zones.mass[z];
-  const quad::Corners x = state_.mesh.corner_positions(z);
-  const double area = zones.area[z];
-
-  double corner_total = 0.0;
-  Vec2 momentum;
-  for (int p = 0; p < 4; ++p) {
-    corner_total += corner_mass[p];
-    momentum += corner_mass[p] * nodes.velocity(n[p]);
-  }
-  const Vec2 mean_velocity = (1.0 / corner_total) * momentum;
-  const std::int32_t origin = nodes.body[n[0]];
-  double kinetic_defect = 0.0;
-  if (controls_.fracture.particles_per_zone == 4) {
-    // 2 x 2 sub-particles: each corner's mass with its node's velocity (kinetic energy exact).
-    for (int p = 0; p < 4; ++p) {
-      const quad::Corners region = quad::corner_region(x, p);
-      state_.particles.add(quad::centre(region), nodes.velocity(n[p]), corner_mass[p] * mass / corner_total,
-                     0.25 * std::sqrt(area), origin, state_.time + state_.time_step_next);
-    }
-  } else {
-    // One particle inscribed in the zone: radius sqrt(A)/2, the zone's mass and momentum.
-    for (int p = 0; p < 4; ++p) {
-      const Vec2 d = nodes.velocity(n[p]) - mean_velocity;
-      kinetic_defect += 0.5 * corner_mass[p] * dot(d, d);
-    }
-    state_.particles.add(quad::centre(x), mean_velocity, mass, 0.5 * std::sqrt(area), origin, state_.time + state_.time_step_next);
-  }
-  state_.ledger.energy.converted += mass * zones.specific_energy[z] + kinetic_defect;
-  state_.ledger.energy.internal -= mass * zones.specific_energy[z];
-
-  // The zone's share of each corner node leaves with it; a node left without zones is removed.
-  for (int p = 0; p < 4; ++p) {
-    nodes.mass[n[p]] -= corner_mass[p];
-  }
-  for (int p = 0; p < 4; ++p) {
-    if (p > 0 && n[p] == n[p - 1]) continue;
-    if (p == 3 && n[3] == n[0]) continue;
-    const auto node = static_cast<std::size_t>(n[p]);
-    if (--state_.zones_per_node[node] == 0) nodes.mass[n[p]] = 0.0;
-    const double inverse = nodes.mass[n[p]] > 0.0 ? 1.0 / nodes.mass[n[p]] : 0.0;
-    nodes.inv_mass_x[n[p]] = held_x_[node] ? 0.0 : inverse;
-    nodes.inv_mass_y[n[p]] = held_y_[node] ? 0.0 : inverse;
-  }
-  zones.active[z] = 0;
-  for (int k = 0; k < 4; ++k) {
-    const Index w = zones.neighbour[z][k];
-    if (w < 0) continue;
-    for (int j = 0; j < 4; ++j) {
-      if (zones.neighbour[w][j] == z) zones.neighbour[w][j] = -1;
-    }
-    zones.neighbour[z][k] = -1;
-  }
-  const std::size_t b = static_cast<std::size_t>(zones.body[z]);
+  const double mass = state_.mesh.zones.mass[z];
+  const std::size_t b = static_cast<std::size_t>(state_.mesh.zones.body[z]);
+  const ConversionEnergy energy =
+      convert_zone_to_particles(state_.mesh, state_.particles, z, controls_.fracture.particles_per_zone,
+                                state_.time + state_.time_step_next, state_.zones_per_node, held_x_, held_y_);
+  state_.ledger.energy.converted += energy.converted();
+  state_.ledger.energy.internal -= energy.internal;
   if (rule == ConversionRule::erosion) {
     ++state_.fracture_counts[b].eroded;
     state_.fracture_counts[b].eroded_mass += mass;

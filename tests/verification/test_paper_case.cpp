@@ -16,6 +16,8 @@
 //    faces (bending); spaced, the plates damaged in turn, each shedding a plug.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -83,7 +85,10 @@ PaperRun run_paper_case(const std::string& file) {
   PaperRun run;
   std::size_t plates = 0;
   run::RunOptions options;
-  options.output_directory = std::filesystem::temp_directory_path() / ("krug_test_paper_" + std::filesystem::path(file).stem().string());
+  // Under the build tree's test folder (the working directory ctest gives), one folder per process, so
+  // that two test runs at once (two build trees) never share it.
+  options.output_directory = std::filesystem::current_path() /
+                             ("paper_case_outputs_" + std::to_string(::getpid())) / std::filesystem::path(file).stem();
   // Damage onsets, from every cycle (a zone converted later is still seen).
   options.on_cycle = [&](const Simulation& sim, double) {
     const Mesh& mesh = sim.mesh();
@@ -132,7 +137,7 @@ PaperRun run_paper_case(const std::string& file) {
   run.first_damage.assign(plates, Onset{});
   run.first_damage_on_axis.assign(plates, Onset{});
   const io::RunResult result = run::run_scenario(scenario, options);
-  std::filesystem::remove_all(options.output_directory);
+  std::filesystem::remove_all(options.output_directory.parent_path());
   run.status = result.status == io::RunStatus::completed ? "completed" : result.message;
   REQUIRE(result.penetration.has_value());
   run.penetration = *result.penetration;
