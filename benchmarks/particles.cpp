@@ -12,7 +12,7 @@
 // the same steps. Counters: candidates and active contacts per particle and Gauss-Seidel sweeps per step.
 //
 // kernel/particle_segment, kernel/particle_particle: the narrow-phase arithmetic of one Gauss-Seidel
-// update (DESIGN.md section 2 step 3), in ns per candidate pair: predicted positions, the contact
+// update (docs/theory.md §2 step 3), in ns per candidate pair: predicted positions, the contact
 // geometry (krug::contact::disc_segment_contact / disc_disc_contact, the functions the solver calls),
 // the effective inverse mass, the clamped normal reaction and the velocity changes of the points, over
 // 4096 pairs in arrays (no broad phase, no bookkeeping). Half of the pairs touch.

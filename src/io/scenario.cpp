@@ -200,7 +200,7 @@ contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bod
   const bool any_fracture = std::find(fracturing.begin(), fracturing.end(), true) != fracturing.end();
   if (any_fracture && !spec.has("pairs")) {
     // With fracture on, contact defaults to all pairs and each fracturing body's self-contact (a plug
-    // against its own plate is a self-contact); particles meet everything (DESIGN.md section 2 step 7).
+    // against its own plate is a self-contact); particles meet everything (docs/theory.md §2 step 7).
     Json resolved_pairs = Json::array();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       for (std::size_t j = i; j < bodies.size(); ++j) {

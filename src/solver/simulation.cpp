@@ -65,7 +65,7 @@ Simulation::Simulation(SimulationSetup setup)
   }
   initialise();
   if (fracture_enabled_) {
-    // Free elements collide with everything (DESIGN.md section 2 step 7); in RZ the axis holds the rings.
+    // Free elements collide with everything (docs/theory.md §2 step 7); in RZ the axis holds the rings.
     setup.contact.particles = true;
     setup.contact.axis_wall = geometry_ == GeometryKind::axisymmetric;
   }
@@ -336,7 +336,7 @@ void Simulation::solve_contact_reactions() {
 void Simulation::book_contact_work(double dt_mid) {
   // W_contact = sum dt^n R . ubar over the nodes that received a reaction; on a held DOF the
   // boundary cancels R, doing -R u dt (and taking the axial impulse). The overlap line is the part of
-  // it done by the contacts that carry a pre-existing overlap (DESIGN.md section 3): the rest, the work
+  // it done by the contacts that carry a pre-existing overlap (docs/theory.md §3): the rest, the work
   // of contacts that started the step apart, is dissipative.
   const NodeFields& nodes = state_.mesh.nodes;
   for (const contact::ContactPoint point : contact_.touched_points()) {

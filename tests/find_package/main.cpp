@@ -1,5 +1,5 @@
 // Consumer of an installed Krug: builds a planar gas strip of 4 x 1 zones through the public API,
-// runs a few cycles and checks the two invariants every run must keep (DESIGN.md section 3):
+// runs a few cycles and checks the two invariants every run must keep (docs/theory.md §3):
 // total energy to round-off and mass exactly. Exit status 0 on success.
 #include <cmath>
 #include <cstdio>
@@ -53,7 +53,7 @@ int main() {
   const int cycles = 10;
   for (int k = 0; k < cycles && !sim.finished(); ++k) sim.step();
 
-  // Rigid walls do no work, so K + IE itself is conserved (K at the half step, DESIGN.md section 2).
+  // Rigid walls do no work, so K + IE itself is conserved (K at the half step, docs/theory.md §2).
   const double drift = sim.ledger().relative_energy_drift();
   const double mesh_drift = std::abs(mesh_energy(sim.mesh()) - initial_energy) / initial_energy;
   const double mass = sim.summarise(sim.bodies().front()).mass;

@@ -41,7 +41,7 @@ elseif(KRUG_STEP STREQUAL "consumer")
   run_step("running the consumer" ${consumer})
 
 elseif(KRUG_STEP STREQUAL "config")
-  # Cairo and the plotting library serve the app only (DESIGN.md section 5): never in the package.
+  # Cairo and the plotting library serve the app only (docs/theory.md §5): never in the package.
   file(GLOB_RECURSE package_files ${KRUG_PREFIX}/*/cmake/Krug/*.cmake)
   if(NOT package_files)
     message(FATAL_ERROR "no package files under ${KRUG_PREFIX}")

@@ -1,4 +1,4 @@
-// Kernel-level invariants of the Lagrangian step on small meshes built in code (DESIGN.md section 2):
+// Kernel-level invariants of the Lagrangian step on small meshes built in code (docs/theory.md §2):
 // the compatible corner forces conserve mass, axial momentum and total energy to round-off.
 #include <catch2/catch.hpp>
 
@@ -40,7 +40,7 @@ TEST_CASE("Sod-like strip conserves mass and total energy to round-off", "[conse
   Simulation sim = gas_strip(geometry, 60, 4, form);
   while (!sim.finished()) sim.step();
   CHECK(sim.ledger().relative_mass_error() < 1e-14);
-  // The area-weighted RZ form is only approximately conservative (DESIGN.md section 2 step 1): its
+  // The area-weighted RZ form is only approximately conservative (docs/theory.md §2 step 1): its
   // accelerations are Wilkins' and its internal energy is each zone's own p dV, so the books do not
   // close exactly; that form is checked in the next test case.
   if (form == AxisymmetricForm::area_weighted) return;

@@ -1,4 +1,4 @@
-// Narrow-phase contact kernels (krug/contact/kernels.hpp; DESIGN.md section 2 step 3) against hand
+// Narrow-phase contact kernels (krug/contact/kernels.hpp; docs/theory.md §2 step 3) against hand
 // computations: the projection of a point on a segment, the feature a disc is measured from, disc
 // against segment and disc against disc, the effective inverse mass w of the header's formula and the
 // accumulated-impulse clamps. Every expected number is worked out in the comment beside it.

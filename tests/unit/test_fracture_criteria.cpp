@@ -1,5 +1,5 @@
 // Point-wise fracture criteria (krug/fracture/criteria.hpp; Gulidov & Shabalin 1996, criteria (1);
-// DESIGN.md section 2 step 6) against hand values: principal stretches of pure stretch, rotated
+// docs/theory.md §2 step 6) against hand values: principal stretches of pure stretch, rotated
 // stretch and simple shear, the one-point deformation gradient of a quad under affine and hourglass
 // motions, principal stresses, the order in which `exceeded` reports criteria, loosening, the
 // fully-fractured rule and the erosion limits.

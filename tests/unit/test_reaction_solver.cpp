@@ -1,4 +1,4 @@
-// The contact reaction solver (krug/contact/contact.hpp; DESIGN.md section 2 step 3) on tiny scenes
+// The contact reaction solver (krug/contact/contact.hpp; docs/theory.md §2 step 3) on tiny scenes
 // built in code: one-zone bodies from generate::rectangle, single particles and rigid walls. One call
 // of ContactSolver::solve with given dt^n (dt_mid) and dt^{n+1/2} (dt_next), on velocities that stand
 // for the predictor's u*. Each reaction R changes a velocity by dt_mid R W and so the predicted gap

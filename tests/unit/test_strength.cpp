@@ -149,7 +149,7 @@ TEST_CASE("radial return: lands on the yield surface along the trial direction",
     REQUIRE(result.yielded);
     // sqrt(3/2 s:s) = Y to round-off (brief: 1e-12 relative).
     CHECK(krug::equivalent_stress(result.deviator) == Approx(yield).epsilon(1e-12));
-    // d eps_p = (q_trial - Y) / (3 mu) (DESIGN.md §2 step 5 with H = 0).
+    // d eps_p = (q_trial - Y) / (3 mu) (docs/theory.md §2 step 5 with H = 0).
     CHECK(result.plastic_strain_increment == Approx((trial_equivalent - yield) / (3.0 * mu)).epsilon(1e-13));
     // Radial: s = (Y / q_trial) s_trial, component by component.
     check_same(result.deviator, krug::scaled(trial, yield / trial_equivalent), 1e-12 * yield);

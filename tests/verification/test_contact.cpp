@@ -1,4 +1,4 @@
-// Contact by reaction forces (DESIGN.md section 2 step 3; docs/verification.md, "Contact"): problems
+// Contact by reaction forces (docs/theory.md §2 step 3; docs/verification.md, "Contact"): problems
 // with known answers for the node-on-segment and wall contacts, run through the library API.
 //
 //   1. Patch test (Taylor & Papadopoulos 1991): two elastic blocks (planar) and two elastic cylinders
@@ -278,7 +278,7 @@ void check_squeeze(GeometryKind geometry, int upper_across, double gap_tolerance
   report(name, "worst gap / zone; rho0 c_L x worst velocity jump / stress", "0", q.worst_gap / q.zone,
          format_number("%.1e", jump_stress), q.zones, 0.0);
   report(name, "node displacement off the exact linear field / end displacement", "0", q.worst_field, "-", q.zones, 0.0);
-  // Uniform stress within 1 % (the issue): both sides' interface zones, each of them, and the force the
+  // Uniform stress within 1 % (the acceptance bar): both sides' interface zones, each of them, and the force the
   // contact carries. The exact value is for the measured end displacement.
   CHECK(error[0] < 0.01);
   CHECK(error[1] < 0.01);
@@ -492,7 +492,7 @@ ObliqueRun run_oblique(double friction, contact::ReactionMethod method) {
 
 TEST_CASE("Contact friction: a block sliding on a rigid wall loses tangential momentum f x the normal impulse",
           "[contact][friction]") {
-  // Coulomb (DESIGN.md section 2 step 3): while a contact slides, its tangential reaction is f R. Each
+  // Coulomb (docs/theory.md §2 step 3): while a contact slides, its tangential reaction is f R. Each
   // node meets the wall in its own contact, solved exactly in one Gauss-Seidel pass, so if every node
   // slides at every step the tangential impulse is f x the normal impulse to round-off. Sliding holds
   // here: f = 0.1 takes at most f x (twice the normal speed) = 2 m/s from a node's 10 m/s.
@@ -673,13 +673,13 @@ TEST_CASE("Contact striker into a plate without fracture: no interpenetration, m
                    << run.seconds << " s");
   REQUIRE(run.failure.empty());
   CHECK(2 * run.contact_steps > run.cycles);  // the bullet pushes through the whole run
-  // No interpenetration beyond 1e-3 of a zone (the issue), at any step, both ways (bullet nodes in the
+  // No interpenetration beyond 1e-3 of a zone (the acceptance bar), at any step, both ways (bullet nodes in the
   // plate, plate nodes in the bullet), measured geometrically (node inside a zone of the other body).
   CHECK(run.deepest_penetration < 1e-3 * run.zone);
   // The fixed rim is the only external force: axial momentum changes by its impulse, to round-off
   // (compatible RZ forces and equal and opposite contact reactions).
   CHECK(run.momentum_error < 1e-12);
-  // Energy ledger closed within 0.5 % (the issue); contact work books what the reactions take.
+  // Energy ledger closed within 0.5 % (the acceptance bar); contact work books what the reactions take.
   CHECK(run.energy_drift < 5e-3);
   CHECK(run.contact_work <= 0.0);
 }

@@ -1,5 +1,5 @@
 // E8 of verification.md (fracture and free elements, self-consistency), kernel level: the conversion
-// of fully fractured zones into free elements (DESIGN.md section 2 step 7) on small blocks built in
+// of fully fractured zones into free elements (docs/theory.md §2 step 7) on small blocks built in
 // code, planar and axisymmetric, one particle per zone and 2 x 2.
 //
 //   - mass and (axial) momentum pass to the particles exactly: every step, the independent sums over

@@ -9,7 +9,7 @@
 // Checked: the run reaches its end (12 us) without a numerical failure; mass is exact; axial momentum
 // changes only by the impulse of the fixed rim; the energy ledger closes; the striker perforates (it
 // is below the plate's rear face, still fast, and the plate has lost zones to particles). The
-// interior-conversion count (DESIGN.md section 2 step 7, the documented deviation from the paper)
+// interior-conversion count (docs/theory.md §2 step 7, the documented deviation from the paper)
 // is reported.
 #include <catch2/catch.hpp>
 
@@ -73,7 +73,7 @@ TEST_CASE("E8 hardened-steel striker at 1.5 km/s through a 6061-T6 plate runs to
   CHECK(ledger.relative_mass_error() < 1e-14);
   CHECK(momentum_error < 1e-12);
   CHECK(ledger.relative_energy_drift() < 1e-12);
-  // Contacts that started a step apart only dissipate (DESIGN.md section 3): the contact work less the
+  // Contacts that started a step apart only dissipate (docs/theory.md §3): the contact work less the
   // overlap line (the contacts pushing a pre-existing overlap open), to round-off.
   CHECK(ledger.energy.contact - ledger.energy.overlap <= 1e-12 * ledger.energy_scale());
   // Perforation: the whole striker is below the plate's rear face z = -3 mm (its rear starts at

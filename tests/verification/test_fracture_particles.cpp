@@ -1,5 +1,5 @@
 // E8 of verification.md (fracture and free elements): free elements in a closed box, swept by a
-// moving wall. Checks the particle contacts of DESIGN.md section 2 step 3 (particle-particle,
+// moving wall. Checks the particle contacts of docs/theory.md §2 step 3 (particle-particle,
 // particle-segment, particle-wall) on a crowd of particles:
 //   - no particle passes through another, a wall of the box or the moving wall by more than 1e-3 of
 //     its radius (direct distance checks after every step, and deepest_contact_gap());
@@ -167,7 +167,7 @@ TEST_CASE("E8 particles in a closed box swept by a moving wall: no pass-through,
   report("E8 particles in a box", "energy drift, max", "< 1e-12", worst_drift, "round-off", zones, run.seconds);
 
   // The case: the whole block became particles, which the wall then drove (it did positive work).
-  // Contacts that started a step apart only dissipate (DESIGN.md section 3): the contact work less the
+  // Contacts that started a step apart only dissipate (docs/theory.md §3): the contact work less the
   // overlap line (the contacts pushing a pre-existing overlap open), to round-off.
   CHECK(ledger.energy.contact - ledger.energy.overlap <= 1e-12 * ledger.energy_scale());
   CHECK(sim.fracture_counts(0).converted == block_zones);

@@ -1,6 +1,6 @@
 // E8 of verification.md (fracture and free elements), whole problem built through the library API:
 // a flat punch through a plate with a narrow annular band of zones damaged beforehand. The band keeps
-// only compressive pressure (DESIGN.md section 2 step 6), so the punch shears it; its zones become
+// only compressive pressure (docs/theory.md §2 step 6), so the punch shears it; its zones become
 // fully fractured (altitude below f_h x initial, or loosened past chi_*) and convert to particles one
 // boundary layer per step, or sooner by the interior rules, until the plug comes free.
 //
@@ -8,7 +8,7 @@
 // least as fast), axial momentum changes only by the impulse of the fixed rim (to round-off), the
 // energy ledger closes, and the time step does not collapse: after every step each damaged zone left
 // has a stable step of at least time_step_floor_ratio x the median zone step (damaged zones below it
-// convert instead, DESIGN.md section 2 step 7). The band is a quarter of a zone wide, so its zones
+// convert instead, docs/theory.md §2 step 7). The band is a quarter of a zone wide, so its zones
 // start at 0.25 x the median step, just above the floor 0.2: shearing takes them below it, which is
 // what the rule is for. The same run with the rule off (ratio 0) is the comparison. The
 // interior-conversion count is reported.
@@ -19,7 +19,7 @@
 // 16 zones to the rim r = 6 mm, which is fixed. Punch: a very stiff elastic cylinder ("rigid-ish":
 // rho 7850, K 500 GPa, mu 300 GPa, no yield, no fracture; wave speed 10.7 km/s), radius 2 mm, 4 mm
 // long, 0.25 mm zones, 200 m/s onto the plate, touching it at t = 0. Contact: punch/plate and the
-// plate's self-contact (the plug against its own plate); particles meet everything (DESIGN.md 2.7).
+// plate's self-contact (the plug against its own plate); particles meet everything (docs/theory.md §2 step 7).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -182,7 +182,7 @@ TEST_CASE("E8 punch through a plate with a damaged band: the plug separates, mom
   // Round-off: measured 1.2e-15 (momentum), 7e-16 (drift).
   CHECK(momentum_error < 1e-12);
   CHECK(ledger.relative_energy_drift() < 1e-12);
-  // Contacts that started a step apart only dissipate (DESIGN.md section 3): the contact work less the
+  // Contacts that started a step apart only dissipate (docs/theory.md §3): the contact work less the
   // overlap line (the contacts pushing a pre-existing overlap open), to round-off.
   CHECK(ledger.energy.contact - ledger.energy.overlap <= 1e-12 * ledger.energy_scale());
   CHECK(ledger.relative_mass_error() < 1e-14);
@@ -203,7 +203,7 @@ TEST_CASE("E8 punch with a floor above the band's step: the damaged zones below 
           "[fracture][E8][punch]") {
   // The band's zones start at 0.25 x the median zone step (a quarter-zone-wide band); with
   // time_step_floor_ratio 0.3 every one of them is below the floor from the first step, so the rule
-  // (DESIGN.md section 2 step 7) converts them: a zone on the surface as a boundary zone, one below
+  // (docs/theory.md §2 step 7) converts them: a zone on the surface as a boundary zone, one below
   // it as an interior conversion (measured 4 of the 8, as the surface moves in while they go), and the
   // step is no longer held by them. Without the rule they stay and hold the step down while they last.
   constexpr double floor_ratio = 0.3;

@@ -7,7 +7,7 @@
 // Checked, as the validation issue asks:
 //  - perforation (the bullet's tip beyond the target's rear face, still moving on) and dU > 0;
 //  - ledgers: mass to round-off; axial momentum = initial + the fixed rims' boundary impulse; the
-//    energy ledger (the issue's bar is 1 %; it closes to round-off by construction, so 1e-9 is the
+//    energy ledger (the acceptance bar is 1 %; it closes to round-off by construction, so 1e-9 is the
 //    bar here);
 //  - dU/U0 of the bullet body within the band of the mesh study (docs/validation.md, "Mesh"): the
 //    value at 10 zones per mm plus or minus the spread of 5, 7 and 10 zones per mm;

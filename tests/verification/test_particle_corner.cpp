@@ -1,6 +1,6 @@
 // E8 of verification.md (fracture and free elements): a free element at a convex corner of a body's
 // boundary. Regression test of the particle-segment kernel (src/contact/contact.cpp): the start gap
-// (the gap at x^n, which decides what counts as pre-existing overlap, DESIGN.md section 2 step 3) was
+// (the gap at x^n, which decides what counts as pre-existing overlap, docs/theory.md §2 step 3) was
 // measured from the segment's infinite line, while the predicted gap is measured from the feature the
 // contact point test picks (the face while the centre projects onto it, else the end point). Beside a
 // face, near a convex corner, the line distance is negative although the particle does not touch the

@@ -18,7 +18,7 @@ namespace {
 //  - star state, plateau windows of sod_measures.hpp: the mean within 1 % of the exact value
 //    [0.02 % to 0.17 %] and every zone within 3 % [worst 2.3 %, rho*_R next to the wall-heated
 //    contact].
-//  - energy: the compatible update conserves total energy to round-off (DESIGN.md section 2);
+//  - energy: the compatible update conserves total energy to round-off (docs/theory.md §2);
 //    a few hundred steps of 1e-16 relative increments stay far below 1e-12 [7e-15].
 //  - L1 density error below 3e-3 [2.29e-3]; it halves with each doubling of the zones
 //    (convergence_studies.cpp), so 3e-3 is an absolute bound at this resolution, not a fit.
@@ -36,8 +36,8 @@ void check_sod(const std::string& problem, const Run& run) {
   const long zones = tube.zone_end - tube.zone_begin;
   const ExactProfile exact = read_exact("sod_t0.25.csv");
 
-  // Compatible scheme, no boundary work (walls at rest): total energy to round-off (DESIGN.md
-  // section 3; a few hundred steps of 1e-16 increments).
+  // Compatible scheme, no boundary work (walls at rest): total energy to round-off (docs/theory.md
+  // §3; a few hundred steps of 1e-16 increments).
   CHECK(sim.ledger().relative_energy_drift() < 1e-12);
   report(problem, "energy drift", "0 (round-off)", sim.ledger().relative_energy_drift(), "< 1e-12", zones, run.seconds);
 

@@ -156,7 +156,7 @@ TEST_CASE("E3 elastic-plastic piston: plateaux, fronts and the yield surface", "
   {  // conservation
     const Ledger& ledger = sim.ledger();
     CHECK(ledger.relative_mass_error() == 0.0);
-    // Total energy with the piston's work (DESIGN.md section 3), to round-off.
+    // Total energy with the piston's work (docs/theory.md §3), to round-off.
     CHECK(ledger.relative_energy_drift() < 1e-12);
     // Axial momentum changes only by the piston's impulse.
     CHECK(std::abs(ledger.axial_momentum - ledger.initial_axial_momentum - ledger.axial_boundary_impulse) <

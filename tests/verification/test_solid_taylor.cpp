@@ -59,7 +59,7 @@ TEST_CASE("E6 Taylor bar at 227 m/s: length and impact-face radius at 80 us", "[
 
   const Ledger& ledger = sim.ledger();
   CHECK(ledger.relative_mass_error() == 0.0);
-  // Total energy with the contact and slip-plane work booked (DESIGN.md section 3): round-off.
+  // Total energy with the contact and slip-plane work booked (docs/theory.md §3): round-off.
   CHECK(ledger.relative_energy_drift() < 1e-12);
   // Nearly all the kinetic energy went into plastic work; the rest is viscous and hourglass work
   // (measured at 60 x 8: 95 %, 4 % and 1 %) and the elastic ringing left in the bar.

@@ -1,5 +1,5 @@
 #pragma once
-// Contact by reaction forces (DESIGN.md section 2 step 3): node-on-segment between the bodies a
+// Contact by reaction forces (docs/theory.md §2 step 3): node-on-segment between the bodies a
 // scenario pairs (both ways), self-contact of a body's own boundary, and rigid walls that push but
 // never pull. Works on the velocities after the predictor: each reaction changes velocities by
 // dt^n R W, and the predicted positions x* = x^n + dt^{n+1/2} u follow.

@@ -1,5 +1,5 @@
 #pragma once
-// Narrow-phase contact kernels (DESIGN.md section 2 step 3): the reaction R found in a second stage
+// Narrow-phase contact kernels (docs/theory.md §2 step 3): the reaction R found in a second stage
 // from the predicted positions, by forward-increment Lagrange multipliers (Carpenter, Taylor & Katona
 // 1991; Gulidov & Shabalin 1996).
 //
@@ -53,7 +53,7 @@ inline SegmentProjection project(Vec2 c, Vec2 a, Vec2 b, double radius) {
 // The feature of a segment a disc is measured against: the face while its centre projects within the
 // segment (the signed distance from the face's line), else the nearer end point (a corner to roll
 // over: the distance from it). The start gap of a contact is taken on the same feature as its
-// predicted gap (DESIGN.md section 2 step 3).
+// predicted gap (docs/theory.md §2 step 3).
 enum class SegmentFeature : std::uint8_t { face, end_a, end_b };
 
 inline SegmentFeature closest_feature(const SegmentProjection& p) {

@@ -1,6 +1,6 @@
 #pragma once
 // Fracture criteria (1) of Gulidov & Shabalin (1996), point-wise, and the damaged-state rules of
-// DESIGN.md section 2 step 6. A criterion is enabled only when its limit is given.
+// docs/theory.md §2 step 6. A criterion is enabled only when its limit is given.
 //
 //   |eps_1| < eps_*     eps_1 = lambda_max - 1, the largest principal elongation
 //   |sigma_1| < sigma_* sigma_1 = the largest principal value of s - p I (no artificial viscosity);

@@ -16,7 +16,7 @@
 //   Plastic work density over the step: the work of the flow stress along the plastic path,
 //   dW_p = integral of Y d eps_p = (Y_n + Y_{n+1}) / 2 * d eps_p (J/m^3): exact for linear hardening,
 //   so the accumulated W_p is the state function Y0 eps_p + H eps_p^2 / 2; the caller multiplies by
-//   the zone volume. It is a part of the internal energy, reported, never added to it (DESIGN.md §3).
+//   the zone volume. It is a part of the internal energy, reported, never added to it (docs/theory.md §3).
 //
 // Components. The computational plane is (x, y) in planar geometry and (z, r) in axisymmetric
 // geometry; `xx` is the first coordinate (x, or the axial z), `yy` the second (y, or r), `xy` the

@@ -3,7 +3,7 @@
 // node and zone fields stored as structure-of-arrays. Several bodies share one mesh; each body owns
 // a contiguous range of nodes and of zones and never shares a node with another body.
 //
-// Time levels (DESIGN.md section 2): positions, density, stress and energy live at t^n; velocities
+// Time levels (docs/theory.md §2): positions, density, stress and energy live at t^n; velocities
 // at half steps. Extensive quantities (mass, volume, force) are per radian in axisymmetric geometry
 // and per unit thickness in planar geometry.
 #include <array>
@@ -58,7 +58,7 @@ struct ZoneFields {
   std::vector<ZoneCorners> neighbour;            // zone across each edge (p, p+1); -1 on a boundary
   bool neighbours_built = false;                 // set by build_edge_continuations, cleared by resize
   std::vector<double> corner_mass;               // 4 per zone: the zone's share of each corner node's mass
-  // Fracture (DESIGN.md section 2 step 6): permanent damage, when and why it started.
+  // Fracture (docs/theory.md §2 step 6): permanent damage, when and why it started.
   std::vector<std::uint8_t> damaged;             // 0 intact, 1 damaged
   std::vector<double> damage_time;               // s; -1 while intact
   std::vector<std::uint8_t> damage_criterion;    // fracture::Criterion that fired

@@ -27,7 +27,7 @@ enum class AxisymmetricForm {
   area_weighted    // Wilkins' area-weighted form: better symmetry on polar meshes, not exactly conservative
 };
 
-// Fracture and conversion to free elements (DESIGN.md section 2 steps 6-7): numerical parameters.
+// Fracture and conversion to free elements (docs/theory.md §2 steps 6-7): numerical parameters.
 struct FractureControls {
   double altitude_ratio = 0.25;            // f_h: fully fractured when the smallest altitude < f_h x initial
   double interior_altitude_ratio = 0.1;    // f_i: a damaged interior zone this thin converts too

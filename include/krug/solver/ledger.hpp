@@ -1,5 +1,5 @@
 #pragma once
-// The conservation ledgers every run keeps (DESIGN.md section 3). Values are per radian
+// The conservation ledgers every run keeps (docs/theory.md §3). Values are per radian
 // (axisymmetric) or per unit thickness (planar); reports multiply by whole_body_factor().
 //
 //   E_total = K + IE + E_converted - W_contact - W_boundary

@@ -1,6 +1,6 @@
 #pragma once
 // The simulation: bodies on one Lagrangian mesh, their materials, boundary conditions, controls,
-// the clock and the ledgers. step() is the recipe of DESIGN.md section 2.
+// the clock and the ledgers. step() is the recipe of docs/theory.md §2.
 #include <string>
 #include <vector>
 

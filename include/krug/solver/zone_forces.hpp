@@ -1,5 +1,5 @@
 #pragma once
-// Step 1 of the time step: corner forces F^n of each zone on its four nodes (DESIGN.md section 2).
+// Step 1 of the time step: corner forces F^n of each zone on its four nodes (docs/theory.md §2).
 //
 // Stress: the corner forces are the exact adjoint of the zone's discrete strain rate,
 // sum_p f_p . u_p = -V sigma : D for every velocity field, so that the internal-energy update

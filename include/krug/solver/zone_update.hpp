@@ -1,7 +1,7 @@
 #pragma once
 // Step 5 of the time step for one body: new geometry at t^{n+1}, density, compatible internal energy
 // m de = -dt^n sum_p f_p . ubar_p (ubar = mid-step velocity), pressure and sound speed from the EOS,
-// and each zone's stable time step for step 8 (DESIGN.md section 2).
+// and each zone's stable time step for step 8 (docs/theory.md §2).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -170,7 +170,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
           result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
         }
       }
-      // A damaged zone resists only volumetric compression (DESIGN.md section 2 step 6).
+      // A damaged zone resists only volumetric compression (docs/theory.md §2 step 6).
       const double pressure = damaged ? std::max(eos.pressure(density, energy), 0.0) : eos.pressure(density, energy);
       double wave_speed_squared = eos.sound_speed_squared(density, energy, pressure);
       if constexpr (has_strength) {  // a gas has no shear wave: no division for it
