@@ -39,10 +39,12 @@ std::optional<StopMonitor> stop_monitor(const Scenario& scenario) {
 // Feeds the stop rule one sample: the body's velocity, and whether it is clear of the rule's plane
 // (every node that carries mass beyond it, the way the body first moved along the first axis).
 // With clear_of_targets, also whether the projectile has cleared its targets or stopped advancing.
+// `known`: a summary of this moment already made for the rule's body (or none).
 bool observe_stop(const Simulation& simulation, StopMonitor& monitor, const Scenario& scenario,
-                  const std::optional<PenetrationRecord>& penetration) {
+                  const std::optional<PenetrationRecord>& penetration, const std::optional<BodySummary>& known) {
   const StopRule& rule = monitor.rule();
-  const BodySummary body = simulation.summarise(simulation.bodies()[static_cast<std::size_t>(rule.body_index)]);
+  const BodySummary body =
+      known ? *known : simulation.summarise(simulation.bodies()[static_cast<std::size_t>(rule.body_index)]);
   bool clear = true;
   if (rule.clear_of) {
     const bool moving_down = monitor.state().started ? monitor.state().initial_velocity.x < 0.0 : body.velocity.x < 0.0;
@@ -50,7 +52,7 @@ bool observe_stop(const Simulation& simulation, StopMonitor& monitor, const Scen
   }
   return monitor.observe(simulation.time(), body.velocity, [&] {
     if (!clear) return false;
-    if (!rule.clear_of_targets || !penetration || !scenario.penetration) return true;
+    if (!rule.clear_of_targets || !penetration) return true;
     const PenetrationRecord& r = *penetration;
     const double advance = r.direction * (r.axis == 0 ? body.velocity.x : body.velocity.y);
     if (advance <= rule.velocity_change * monitor.state().scale) return true;  // stopped, or turned back
@@ -88,8 +90,15 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     while (!simulation.finished()) {
       simulation.step();
       recorder.observe(simulation);
-      if (loop.penetration) observe_penetration(simulation, *scenario.penetration, *loop.penetration);
-      if (loop.stop && observe_stop(simulation, *loop.stop, scenario, loop.penetration)) {
+      // The projectile's summary, once per cycle, for the penetration record and the stop rule.
+      std::optional<BodySummary> projectile;
+      if (loop.penetration) {
+        const Index p = scenario.penetration->projectile;
+        projectile = simulation.summarise(simulation.bodies()[static_cast<std::size_t>(p)]);
+        observe_penetration(simulation, *scenario.penetration, *projectile, *loop.penetration);
+        if (loop.stop && loop.stop->rule().body_index != p) projectile.reset();
+      }
+      if (loop.stop && observe_stop(simulation, *loop.stop, scenario, loop.penetration, projectile)) {
         result.stopped_by = "stop rule";
         break;
       }
@@ -173,7 +182,7 @@ RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
   LoopState loop;
   if (scenario.penetration) loop.penetration = start_penetration(simulation, *scenario.penetration);
   loop.stop = stop_monitor(scenario);
-  if (loop.stop) (void)observe_stop(simulation, *loop.stop, scenario, loop.penetration);
+  if (loop.stop) (void)observe_stop(simulation, *loop.stop, scenario, loop.penetration, std::nullopt);
   loop.next_checkpoint_time = scenario.output.checkpoint_interval;
   return run_loop(scenario, simulation, recorder, loop, options);
 }

@@ -56,12 +56,13 @@ void Simulation::convert_fractured_zones() {
   std::vector<std::pair<Index, ConversionRule>> chosen;
   // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
   for (const Body& body : bodies_) {
-    if (!body.erosion().any()) continue;
+    const fracture::ErosionLimits erosion = body.erosion();
+    if (!erosion.any()) continue;
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z] || zones.damaged[z]) continue;
       const quad::Corners x = state_.mesh.corner_positions(z);
-      if (body.erosion().strained(zones.plastic_strain[z]) ||
-          body.erosion().collapsed(quad::smallest_altitude(x, zones.area[z]), zones.initial_altitude[z]) ||
+      if (erosion.strained(zones.plastic_strain[z]) ||
+          erosion.collapsed(quad::smallest_altitude(x, zones.area[z]), zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
         chosen.emplace_back(z, ConversionRule::erosion);
       }

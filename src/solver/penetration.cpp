@@ -67,8 +67,8 @@ PenetrationMoment measure_penetration(const Simulation& simulation, const Penetr
   return m;
 }
 
-void observe_penetration(const Simulation& simulation, const PenetrationSetup& setup, PenetrationRecord& record) {
-  const BodySummary p = simulation.summarise(body_of(simulation, setup.projectile));
+void observe_penetration(const Simulation& simulation, const PenetrationSetup& setup, const BodySummary& p,
+                         PenetrationRecord& record) {
   if (p.zones == 0) return;
   const double nose = advanced(p.bbox_min, p.bbox_max, record);
   record.deepest = std::max(record.deepest, nose);

@@ -79,7 +79,9 @@ PenetrationMoment measure_penetration(const Simulation& simulation, const Penetr
 // Adds the current moment to the record (deepest nose, perforation time). Cheap while the projectile's
 // nose has not passed the targets' initial rear face; after that it computes the pieces every fourth
 // cycle until the perforation (so the perforation time is known to within four steps).
-void observe_penetration(const Simulation& simulation, const PenetrationSetup& setup, PenetrationRecord& record);
+// `projectile`: the projectile's summarise() of this moment (the run loop shares it with the stop rule).
+void observe_penetration(const Simulation& simulation, const PenetrationSetup& setup, const BodySummary& projectile,
+                         PenetrationRecord& record);
 PenetrationReport report_penetration(const Simulation& simulation, const PenetrationSetup& setup,
                                      const PenetrationRecord& record);
 
