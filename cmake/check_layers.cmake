@@ -7,16 +7,18 @@
 #
 # The order, lowest first, as ranks; modules of one rank (material, fracture, particles) are siblings
 # that must not include one another.
-set(order core mesh material fracture particles contact solver io run)
+set(order core mesh material fracture particles contact hydro solver setup io run)
 set(rank_core 0)
 set(rank_mesh 1)
 set(rank_material 2)
 set(rank_fracture 2)
 set(rank_particles 2)
 set(rank_contact 3)
-set(rank_solver 4)
-set(rank_io 5)
-set(rank_run 6)
+set(rank_hydro 4)
+set(rank_solver 5)
+set(rank_setup 6)
+set(rank_io 7)
+set(rank_run 8)
 
 set(failures "")
 foreach(module IN LISTS order)

@@ -1,5 +1,6 @@
 #pragma once
-// Umbrella header of the Krug library (numerics; the JSON/file layer is in krug/io/).
+// Umbrella header of the Krug library: numerics and scenes built in C++ (the JSON/file layer is in
+// krug/io/).
 #include "krug/core/error.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/core/vec2.hpp"
@@ -13,3 +14,4 @@
 #include "krug/solver/ledger.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
+#include "krug/setup/scene.hpp"

@@ -20,7 +20,6 @@
 #include "krug/core/error.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
-#include "krug/mesh/quality.hpp"
 
 namespace krug::io {
 
@@ -28,7 +27,6 @@ namespace {
 
 using detail::AxisNames;
 using detail::axis_names;
-using detail::MeshedBody;
 using detail::read_boundary;
 using detail::read_initial;
 using detail::read_mesh;
@@ -402,8 +400,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   top.text("description", "");
   const std::string geometry_name = top.choice("geometry", {"planar", "axisymmetric"});
   const GeometryKind geometry = geometry_name == "planar" ? GeometryKind::planar : GeometryKind::axisymmetric;
-  SimulationSetup& setup = scenario.setup;
-  setup.geometry = geometry;
+  setup::SceneDescription& scene = scenario.scene;
+  scene.geometry = geometry;
   const double end_time = top.number("end_time", Range::positive());
 
   // Materials: an object name -> definition.
@@ -412,14 +410,14 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   {
     JsonObject materials = top.object("materials");
     for (const std::string& name : materials.keys()) {
-      material_index[name] = static_cast<Index>(setup.materials.size());
+      material_index[name] = static_cast<Index>(scene.materials.size());
       fracture::FractureLimits limits;
       fracture::ErosionLimits erosion;
-      setup.materials.push_back(read_material(name, materials.object(name), limits, erosion));
-      setup.fracture.push_back(limits);
+      scene.materials.push_back(read_material(name, materials.object(name), limits, erosion));
+      scene.fracture.push_back(limits);
       material_erosion.push_back(erosion);
     }
-    if (setup.materials.empty()) materials.fail_here("expected at least one material");
+    if (scene.materials.empty()) materials.fail_here("expected at least one material");
     materials.finish();
   }
 
@@ -427,14 +425,14 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   const Json& bodies = top.raw("bodies");
   if (!bodies.is_array() || bodies.empty()) top.fail("bodies", "a non-empty array of bodies");
   Json resolved_bodies = Json::array();
-  std::map<Index, NodeConstraint> constraints;
+  std::vector<Body> named_bodies;  // name, material and erosion of each body (the readers below name bodies)
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Json resolved_body = Json::object();
     JsonObject spec(bodies[i], fmt::format("bodies[{}]", i), &resolved_body);
     Body body;
     body.name = spec.text("name");
     if (body.name.empty()) spec.fail("name", "a non-empty name");
-    for (const Body& other : setup.bodies) {
+    for (const Body& other : named_bodies) {
       if (other.name == body.name) spec.fail("name", "a name no other body has");
     }
     const std::string material = spec.text("material");
@@ -450,68 +448,39 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
     body.material = m->second;
     body.set_erosion(material_erosion[static_cast<std::size_t>(body.material)]);
     if (auto erosion = spec.optional_object("erosion")) body.set_erosion(read_erosion(std::move(*erosion), body.erosion()));
-    const Index body_index = static_cast<Index>(setup.bodies.size());
-    const MeshedBody meshed = read_mesh(spec.object("mesh"), setup.mesh, body_index, geometry);
-    body.node_begin = meshed.patch.node_begin;
-    body.node_end = meshed.patch.node_end;
-    body.zone_begin = meshed.patch.zone_begin;
-    body.zone_end = meshed.patch.zone_end;
-    if (geometry == GeometryKind::axisymmetric) {
-      for (Index n = body.node_begin; n < body.node_end; ++n) {
-        if (setup.mesh.nodes.y[n] < 0.0) {
-          if (setup.mesh.nodes.y[n] > -1e-12) { setup.mesh.nodes.y[n] = 0.0; continue; }
-          spec.fail_here(fmt::format("node at (z, r) = ({}, {}) lies below the axis; axisymmetric bodies need r >= 0",
-                                     setup.mesh.nodes.x[n], setup.mesh.nodes.y[n]));
-        }
-      }
-    }
-    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      setup.mesh.zones.density[z] = setup.materials[static_cast<std::size_t>(body.material)].reference_density;
-    }
-    if (auto initial = spec.optional_object("initial")) {
-      read_initial(*initial, body, geometry, setup.mesh);
-    }
+    setup::BodyDescription description;
+    description.name = body.name;
+    description.material = body.material;
+    description.erosion = body.erosion();
+    description.where = spec.path();
+    description.mesh = read_mesh(spec.object("mesh"), geometry);
+    if (auto initial = spec.optional_object("initial")) description.initial = read_initial(*initial, geometry);
     if (auto boundary = spec.optional_object("boundary")) {
-      read_boundary(*boundary, meshed, body.name, geometry, setup.mesh, constraints);
+      description.boundary = read_boundary(*boundary, description.mesh, geometry);
     }
     spec.finish();
-    setup.bodies.push_back(body);
+    scene.bodies.push_back(std::move(description));
+    named_bodies.push_back(body);
     resolved_bodies.push_back(resolved_body);
   }
   top.resolve("bodies", resolved_bodies);
-  // Bodies may touch but not overlap: a node of one inside a zone of another is an input error.
-  build_edge_continuations(setup.mesh);
-  for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
-    for (std::size_t j = 0; j < setup.bodies.size(); ++j) {
-      if (i == j) continue;
-      const Body& a = setup.bodies[i];
-      const Body& b = setup.bodies[j];
-      if (const auto overlap = find_node_inside_zones(setup.mesh, a.node_begin, a.node_end, b.zone_begin, b.zone_end)) {
-        const Vec2 p = setup.mesh.nodes.position(overlap->node);
-        throw InputError(fmt::format(
-            "bodies[{}] (\"{}\") overlaps bodies[{}] (\"{}\"): its node at ({:.6g}, {:.6g}) lies {:.3g} m inside "
-            "zone {} of \"{}\"; bodies may touch but not overlap (check the meshes' positions)",
-            i, a.name, j, b.name, p.x, p.y, overlap->depth, overlap->zone - b.zone_begin, b.name));
-      }
-    }
-  }
-  for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
   std::vector<bool> fracturing;
-  for (const Body& body : setup.bodies) fracturing.push_back(setup.fracture[static_cast<std::size_t>(body.material)].any());
-  setup.contact = read_contact(top.object_or_empty("contact"), setup.bodies, geometry, fracturing);
+  for (const Body& body : named_bodies) fracturing.push_back(scene.fracture[static_cast<std::size_t>(body.material)].any());
+  scene.contact = read_contact(top.object_or_empty("contact"), named_bodies, geometry, fracturing);
 
-  setup.controls = read_controls(top.object_or_empty("controls"), end_time);
+  scene.controls = read_controls(top.object_or_empty("controls"), end_time);
   scenario.output = read_output(top.object_or_empty("output"), end_time, geometry);
   if (auto penetration = top.optional_object("penetration")) {
-    scenario.penetration = read_penetration(*penetration, setup.bodies);
+    scenario.penetration = read_penetration(*penetration, named_bodies);
   }
   if (scenario.penetration) {  // a penetration run always has a stop rule: by default, clear of the targets
-    scenario.stop = read_stop_rule(top.object_or_empty("stop"), setup.bodies, scenario.penetration);
+    scenario.stop = read_stop_rule(top.object_or_empty("stop"), named_bodies, scenario.penetration);
   } else if (auto stop = top.optional_object("stop")) {
-    scenario.stop = read_stop_rule(*stop, setup.bodies, scenario.penetration);
+    scenario.stop = read_stop_rule(*stop, named_bodies, scenario.penetration);
   }
   top.finish();
   scenario.resolved_json = resolved.dump(2);
+  scenario.setup = setup::build_simulation(scenario.scene);
   return scenario;
 }
 

@@ -8,8 +8,8 @@
 
 #include "krug/core/error.hpp"
 #include "krug/solver/parallel.hpp"
-#include "krug/solver/zone_forces.hpp"
-#include "krug/solver/zone_update.hpp"
+#include "krug/hydro/zone_forces.hpp"
+#include "krug/hydro/zone_update.hpp"
 
 namespace krug {
 

@@ -1,5 +1,6 @@
 #pragma once
-// Scenario files (JSON, SI units) -> a SimulationSetup ready to run, plus output settings.
+// Scenario files (JSON, SI units) -> a scene description (setup/scene.hpp) and the SimulationSetup
+// built from it, ready to run, plus output settings.
 // The format is documented in docs/scenario-format.md. Every error is an InputError naming the
 // JSON path, the value found and what was expected.
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "krug/setup/scene.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
@@ -59,7 +61,8 @@ struct StopRule {
 struct Scenario {
   std::string title;
   std::filesystem::path source;
-  SimulationSetup setup;
+  setup::SceneDescription scene;  // the scenario in C++ types, as read
+  SimulationSetup setup;          // built from `scene` (setup::build_simulation)
   OutputSettings output;
   std::optional<StopRule> stop;
   std::optional<PenetrationSetup> penetration;  // scenario key "penetration": which body is the projectile

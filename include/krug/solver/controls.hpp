@@ -2,30 +2,9 @@
 // Numerical controls of a run, with defaults. Units SI.
 #include <limits>
 
+#include "krug/hydro/parameters.hpp"
+
 namespace krug {
-
-enum class ViscosityModel {
-  edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
-  scalar,  // Wilkins' zone-centred q added to the pressure
-  off
-};
-
-struct ViscosityParams {
-  ViscosityModel model = ViscosityModel::edge;
-  double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
-  double linear = 0.5;     // c_l, multiplies the sound speed
-  bool limiter = true;     // edge model: switch off for velocity fields linear along the edge
-};
-
-struct HourglassParams {
-  double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
-  double stiffness = 0.05;  // Flanagan-Belytschko stiffness coefficient (x shear modulus; no effect without strength)
-};
-
-enum class AxisymmetricForm {
-  control_volume,  // compatible corner forces from dV/dx_p: exact momentum and energy (default)
-  area_weighted    // Wilkins' area-weighted form: better symmetry on polar meshes, not exactly conservative
-};
 
 // Fracture and conversion to free elements (docs/theory.md §2 steps 6-7): numerical parameters.
 struct FractureControls {

@@ -27,8 +27,8 @@
 
 #include "krug/core/geometry_kind.hpp"
 #include "krug/mesh/mesh.hpp"
-#include "krug/solver/controls.hpp"
-#include "krug/solver/corner_batch.hpp"
+#include "krug/hydro/parameters.hpp"
+#include "krug/hydro/corner_batch.hpp"
 
 namespace krug {
 

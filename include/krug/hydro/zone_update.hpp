@@ -11,7 +11,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/material/strength.hpp"
 #include "krug/mesh/mesh.hpp"
-#include "krug/solver/corner_batch.hpp"
+#include "krug/hydro/corner_batch.hpp"
 
 namespace krug {
 

@@ -1,0 +1,31 @@
+#pragma once
+// Numerical parameters of the hydrodynamic step (artificial viscosity, hourglass control, the
+// axisymmetric form of the corner forces), with defaults. The kernels in this module read them;
+// the solver's Controls carry one copy per run.
+
+namespace krug {
+
+enum class ViscosityModel {
+  edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
+  scalar,  // Wilkins' zone-centred q added to the pressure
+  off
+};
+
+struct ViscosityParams {
+  ViscosityModel model = ViscosityModel::edge;
+  double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
+  double linear = 0.5;     // c_l, multiplies the sound speed
+  bool limiter = true;     // edge model: switch off for velocity fields linear along the edge
+};
+
+struct HourglassParams {
+  double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
+  double stiffness = 0.05;  // Flanagan-Belytschko stiffness coefficient (x shear modulus; no effect without strength)
+};
+
+enum class AxisymmetricForm {
+  control_volume,  // compatible corner forces from dV/dx_p: exact momentum and energy (default)
+  area_weighted    // Wilkins' area-weighted form: better symmetry on polar meshes, not exactly conservative
+};
+
+}  // namespace krug

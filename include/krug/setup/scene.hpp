@@ -1,0 +1,108 @@
+#pragma once
+// A scene in C++ types, with no file format: each body's mesh (a generator and its parameters), its
+// boundary conditions on named sides and its initial fields as functions of position; the materials,
+// fracture limits, contact and numerical controls. build_simulation() turns a scene into a
+// SimulationSetup: meshes generated and checked, fields initialised, bodies tested for overlap.
+//
+// The io module translates scenario JSON into this description (docs/scenario-format.md); a C++
+// program may fill one in directly (docs/architecture.md, "Using the library"). Units SI.
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "krug/mesh/generators.hpp"
+#include "krug/mesh/nosed_cylinder.hpp"
+#include "krug/solver/simulation.hpp"
+
+namespace krug::setup {
+
+// Zones a scene may ask for: about 10 GB of state; beyond this the machine runs out.
+inline constexpr long max_zones = 20'000'000;
+
+// A field over a body: its value at a point (first, second coordinate in m).
+using PointFunction = std::function<double(double first, double second)>;
+
+// A rectangle with grid lines at these coordinates (m), i along the first axis, j along the second.
+// Sides: "<first>_min", "<first>_max", "<second>_min", "<second>_max" (x/y planar, z/r axisymmetric).
+struct RectangleMesh {
+  std::vector<double> first, second;
+};
+
+// An annular sector: radii (m, increasing; a first radius of 0 puts one node at the centre) and angles
+// (radians, increasing). Sides: "inner" (absent when the first radius is 0), "outer", "start", "end".
+struct SectorMesh {
+  std::vector<double> radii, angles;
+};
+
+// A projectile or rod along the axis (generate::nosed_cylinder). Sides: "axis", "nose", "side", "rear".
+struct NosedCylinderMesh {
+  generate::NosedCylinderParams params;
+};
+
+struct MeshDescription {
+  std::variant<RectangleMesh, SectorMesh, NosedCylinderMesh> shape;
+  generate::PositionMap map;  // optional, rectangles and sectors: applied to every generated node
+};
+
+// The side names a boundary may use for this mesh, in the generator's terms (user name -> generator
+// side name).
+std::vector<std::pair<std::string, std::string>> side_names(const MeshDescription& mesh, GeometryKind geometry);
+
+enum class SideCondition {
+  free,      // no constraint
+  symmetry,  // the normal velocity held at zero (the side must be a straight line along an axis)
+  slip,      // the same as symmetry, for a rigid wall the body slides on
+  fixed,     // both components held at zero
+  velocity   // the given components held at the given values (an empty component stays free)
+};
+
+struct SideBoundary {
+  std::string side;
+  SideCondition condition = SideCondition::free;
+  std::array<std::optional<double>, 2> velocity;  // m/s, for SideCondition::velocity
+};
+
+// Energy E (J; per unit thickness in planar geometry, whole body in axisymmetric) put into the zones
+// around the node nearest to `point`, the same specific energy in each.
+struct EnergyDeposit {
+  double energy = 0.0;
+  Vec2 point;
+};
+
+struct InitialState {
+  std::optional<std::array<PointFunction, 2>> velocity;  // m/s at each node; empty: at rest
+  PointFunction density;                                  // kg/m^3 at each zone centre; empty: the material's reference density
+  PointFunction specific_internal_energy;                 // J/kg at each zone centre; empty: 0
+  std::optional<EnergyDeposit> energy_deposit;
+};
+
+struct BodyDescription {
+  std::string name;
+  Index material = 0;  // index into SceneDescription::materials
+  fracture::ErosionLimits erosion;
+  MeshDescription mesh;
+  InitialState initial;
+  std::vector<SideBoundary> boundary;  // applied in order; a node on two sides takes both constraints
+  // How error messages name this body (a scenario's JSON path, "bodies[2]"); empty: "bodies[<index>]".
+  std::string where;
+};
+
+struct SceneDescription {
+  GeometryKind geometry = GeometryKind::planar;
+  std::vector<Material> materials;
+  std::vector<fracture::FractureLimits> fracture;  // per material; empty: no fracture
+  std::vector<BodyDescription> bodies;
+  contact::ContactSetup contact;
+  Controls controls;
+};
+
+// Generates every body's mesh in order, sets its initial fields and constraints, and checks what a
+// mesh can only show once built: zone counts, nodes below the axis, positive densities, straight
+// symmetry sides, bodies that overlap. Every error is an InputError naming the body's `where`.
+SimulationSetup build_simulation(const SceneDescription& scene);
+
+}  // namespace krug::setup

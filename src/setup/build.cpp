@@ -1,0 +1,244 @@
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "krug/core/error.hpp"
+#include "krug/mesh/quality.hpp"
+#include "krug/mesh/quad.hpp"
+#include "krug/setup/scene.hpp"
+
+namespace krug::setup {
+
+namespace {
+
+// Which velocity component a symmetry or slip condition holds on a side: its normal.
+struct SideDirection {
+  bool along_first = false;   // all nodes share the first coordinate: the normal is the first axis
+  bool along_second = false;  // all nodes share the second coordinate
+};
+
+SideDirection side_direction(const Mesh& mesh, const std::vector<Index>& nodes) {
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  for (Index n : nodes) {
+    min_x = std::min(min_x, mesh.nodes.x[n]);
+    max_x = std::max(max_x, mesh.nodes.x[n]);
+    min_y = std::min(min_y, mesh.nodes.y[n]);
+    max_y = std::max(max_y, mesh.nodes.y[n]);
+  }
+  const double extent = std::max({max_x - min_x, max_y - min_y, 1e-300});
+  return {max_x - min_x <= 1e-9 * extent, max_y - min_y <= 1e-9 * extent};
+}
+
+[[noreturn]] void fail(const std::string& where, const std::string& message) {
+  throw InputError(fmt::format("{}: {}", where, message));
+}
+
+void check_zone_count(long zones, const std::string& where, const char* qualifier = "") {
+  if (zones > max_zones) fail(where, fmt::format("{}{} zones is more than the {} this machine can hold", qualifier, zones, max_zones));
+}
+
+generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, const std::string& where) {
+  if (const auto* rectangle = std::get_if<RectangleMesh>(&description.shape)) {
+    check_zone_count(static_cast<long>(rectangle->first.size() - 1) * static_cast<long>(rectangle->second.size() - 1), where);
+    return generate::rectangle(mesh, rectangle->first, rectangle->second, body, description.map);
+  }
+  if (const auto* sector = std::get_if<SectorMesh>(&description.shape)) {
+    if (sector->radii.front() < 0.0) fail(where, "radius.from must be >= 0");
+    check_zone_count(static_cast<long>(sector->radii.size() - 1) * static_cast<long>(sector->angles.size() - 1), where);
+    return generate::sector(mesh, sector->radii, sector->angles, body, description.map);
+  }
+  const generate::NosedCylinderParams& p = std::get<NosedCylinderMesh>(description.shape).params;
+  // An upper bound of the generator's zone count: every column of the O-grid and shank.
+  const long across = static_cast<long>(p.radial_zones) + p.core_zones + p.nose_zones;
+  check_zone_count(across * (across + p.shank_zones), where, "up to ");
+  try {
+    return generate::nosed_cylinder(mesh, p, body);
+  } catch (const InputError& e) {
+    fail(where, e.what());  // the generator's reason, with the body's name
+  }
+}
+
+void set_initial_fields(const InitialState& initial, const Body& body, GeometryKind geometry, Mesh& mesh,
+                        const std::string& where) {
+  if (initial.velocity) {
+    const auto& velocity = *initial.velocity;
+    for (Index n = body.node_begin; n < body.node_end; ++n) {
+      mesh.nodes.u[n] = velocity[0](mesh.nodes.x[n], mesh.nodes.y[n]);
+      mesh.nodes.v[n] = velocity[1](mesh.nodes.x[n], mesh.nodes.y[n]);
+    }
+  }
+  auto zone_field = [&](const PointFunction& f, std::vector<double>& field, bool positive, const char* key) {
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      const Vec2 c = quad::centre(mesh.corner_positions(z));
+      const double value = f ? f(c.x, c.y) : 0.0;
+      if (positive && !(value > 0.0)) {
+        fail(where + ".initial." + key, fmt::format("gives {} at ({}, {}); expected a positive density", value, c.x, c.y));
+      }
+      field[z] = value;
+    }
+  };
+  if (initial.density) zone_field(initial.density, mesh.zones.density, true, "density");
+  zone_field(initial.specific_internal_energy, mesh.zones.specific_energy, false, "specific_internal_energy");
+  if (initial.energy_deposit) {
+    const Vec2 target = initial.energy_deposit->point;
+    Index closest = body.node_begin;
+    for (Index n = body.node_begin; n < body.node_end; ++n) {
+      if (norm(mesh.nodes.position(n) - target) < norm(mesh.nodes.position(closest) - target)) closest = n;
+    }
+    std::vector<Index> zones;
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      const ZoneCorners& c = mesh.zones.corners[z];
+      if (std::find(c.begin(), c.end(), closest) != c.end()) zones.push_back(z);
+    }
+    // Masses are not known yet (the Simulation derives them): density x volume here.
+    double mass = 0.0;
+    std::vector<double> zone_mass;
+    for (Index z : zones) {
+      const quad::Corners x = mesh.corner_positions(z);
+      const double volume = geometry == GeometryKind::axisymmetric ? quad::axisymmetric_volume(x) : quad::area(x);
+      zone_mass.push_back(mesh.zones.density[z] * volume);
+      mass += zone_mass.back();
+    }
+    const double per_model = initial.energy_deposit->energy / whole_body_factor(geometry);
+    for (std::size_t i = 0; i < zones.size(); ++i) {
+      mesh.zones.specific_energy[zones[i]] += per_model / mass;  // same specific energy in each zone
+    }
+  }
+}
+
+void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::Patch& patch,
+                    const std::vector<std::pair<std::string, std::string>>& sides, const std::string& body_name,
+                    GeometryKind geometry, Mesh& mesh, std::map<Index, NodeConstraint>& constraints,
+                    const std::string& where) {
+  for (const SideBoundary& b : boundary) {
+    const auto found = std::find_if(sides.begin(), sides.end(), [&](const auto& s) { return s.first == b.side; });
+    if (found == sides.end()) {
+      std::string valid;
+      for (const auto& [user, _] : sides) valid += (valid.empty() ? "" : ", ") + user;
+      fail(where + ".boundary." + b.side, fmt::format("body \"{}\" has no side of that name; its sides: {}", body_name, valid));
+    }
+    const std::vector<Index>& nodes = patch.sides.at(found->second);
+    auto constrain = [&](Index n, bool fx, bool fy) {
+      NodeConstraint& c = constraints[n];
+      c.node = n;
+      c.fix_x = c.fix_x || fx;
+      c.fix_y = c.fix_y || fy;
+    };
+    switch (b.condition) {
+      case SideCondition::free:
+        break;
+      case SideCondition::symmetry:
+      case SideCondition::slip: {
+        const SideDirection d = side_direction(mesh, nodes);
+        if (!d.along_first && !d.along_second) {
+          fail(where + ".boundary." + b.side,
+               fmt::format("side \"{}\" of body \"{}\" is not a straight line along an axis; a {} condition needs a side "
+                           "of constant {} or constant {}",
+                           b.side, body_name, b.condition == SideCondition::slip ? "slip" : "symmetry",
+                           axis_name(geometry, 0), axis_name(geometry, 1)));
+        }
+        for (Index n : nodes) {
+          constrain(n, d.along_first, d.along_second);
+          if (d.along_first) mesh.nodes.u[n] = 0.0;
+          if (d.along_second) mesh.nodes.v[n] = 0.0;
+        }
+        break;
+      }
+      case SideCondition::fixed:
+        for (Index n : nodes) {
+          constrain(n, true, true);
+          mesh.nodes.u[n] = mesh.nodes.v[n] = 0.0;
+        }
+        break;
+      case SideCondition::velocity:
+        for (Index n : nodes) {
+          constrain(n, b.velocity[0].has_value(), b.velocity[1].has_value());
+          if (b.velocity[0]) mesh.nodes.u[n] = *b.velocity[0];
+          if (b.velocity[1]) mesh.nodes.v[n] = *b.velocity[1];
+        }
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> side_names(const MeshDescription& mesh, GeometryKind geometry) {
+  std::map<std::string, std::string> sides;  // sorted by the user's name
+  if (std::holds_alternative<RectangleMesh>(mesh.shape)) {
+    const std::string first(axis_name(geometry, 0)), second(axis_name(geometry, 1));
+    sides = {{first + "_min", "i_min"}, {first + "_max", "i_max"}, {second + "_min", "j_min"}, {second + "_max", "j_max"}};
+  } else if (const auto* sector = std::get_if<SectorMesh>(&mesh.shape)) {
+    sides = {{"outer", "i_max"}, {"start", "j_min"}, {"end", "j_max"}};
+    if (sector->radii.empty() || sector->radii.front() != 0.0) sides["inner"] = "i_min";
+  } else {
+    for (const char* side : {"axis", "nose", "side", "rear"}) sides[side] = side;
+  }
+  return {sides.begin(), sides.end()};
+}
+
+SimulationSetup build_simulation(const SceneDescription& scene) {
+  SimulationSetup setup;
+  setup.geometry = scene.geometry;
+  setup.materials = scene.materials;
+  setup.fracture = scene.fracture;
+  std::map<Index, NodeConstraint> constraints;
+  std::vector<std::string> where;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDescription& description = scene.bodies[i];
+    where.push_back(description.where.empty() ? fmt::format("bodies[{}]", i) : description.where);
+    if (description.material < 0 || static_cast<std::size_t>(description.material) >= scene.materials.size()) {
+      fail(where.back(), fmt::format("material index {} is not one of the scene's {} materials", description.material,
+                                     scene.materials.size()));
+    }
+    Body body;
+    body.name = description.name;
+    body.material = description.material;
+    body.set_erosion(description.erosion);
+    const generate::Patch patch =
+        generate_mesh(description.mesh, setup.mesh, static_cast<Index>(i), where.back() + ".mesh");
+    body.node_begin = patch.node_begin;
+    body.node_end = patch.node_end;
+    body.zone_begin = patch.zone_begin;
+    body.zone_end = patch.zone_end;
+    if (scene.geometry == GeometryKind::axisymmetric) {
+      for (Index n = body.node_begin; n < body.node_end; ++n) {
+        if (setup.mesh.nodes.y[n] < 0.0) {
+          if (setup.mesh.nodes.y[n] > -1e-12) { setup.mesh.nodes.y[n] = 0.0; continue; }
+          fail(where.back(), fmt::format("node at (z, r) = ({}, {}) lies below the axis; axisymmetric bodies need r >= 0",
+                                         setup.mesh.nodes.x[n], setup.mesh.nodes.y[n]));
+        }
+      }
+    }
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      setup.mesh.zones.density[z] = scene.materials[static_cast<std::size_t>(body.material)].reference_density;
+    }
+    set_initial_fields(description.initial, body, scene.geometry, setup.mesh, where.back());
+    apply_boundary(description.boundary, patch, side_names(description.mesh, scene.geometry), body.name, scene.geometry,
+                   setup.mesh, constraints, where.back());
+    setup.bodies.push_back(body);
+  }
+  // Bodies may touch but not overlap: a node of one inside a zone of another is an input error.
+  build_edge_continuations(setup.mesh);
+  for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+    for (std::size_t j = 0; j < setup.bodies.size(); ++j) {
+      if (i == j) continue;
+      const Body& a = setup.bodies[i];
+      const Body& b = setup.bodies[j];
+      if (const auto overlap = find_node_inside_zones(setup.mesh, a.node_begin, a.node_end, b.zone_begin, b.zone_end)) {
+        const Vec2 p = setup.mesh.nodes.position(overlap->node);
+        throw InputError(fmt::format(
+            "{} (\"{}\") overlaps {} (\"{}\"): its node at ({:.6g}, {:.6g}) lies {:.3g} m inside "
+            "zone {} of \"{}\"; bodies may touch but not overlap (check the meshes' positions)",
+            where[i], a.name, where[j], b.name, p.x, p.y, overlap->depth, overlap->zone - b.zone_begin, b.name));
+      }
+    }
+  }
+  for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
+  setup.contact = scene.contact;
+  setup.controls = scene.controls;
+  return setup;
+}
+
+}  // namespace krug::setup
