@@ -148,6 +148,288 @@ struct ZoneBatch : CornerBatch<zone_batch> {
 
 }  // namespace detail
 
+// The parts of the force kernel, each a loop over one batch of `count` zones starting at zone `first`,
+// in the order compute_corner_forces runs them. They read the batch's gathered corners and velocities
+// and write the batch's arrays (and the zone fields named in each); the sums they add to run in zone
+// order, so that composing them gives the same bits as one loop. Each part is compiled on its own
+// (noinline; one call per 32 zones): that ran at the speed of the single loop, where inlining all
+// of them into one function ran 5-10 % slower (docs/performance.md), and a profile names each part.
+namespace detail {
+
+// What every part reads: flags and coefficients derived from the parameters once per call.
+struct ForceSettings {
+  bool area_weighted = false;
+  bool hourglass_on = false;
+  bool hourglass_stiff = false;
+  double stiffness_modulus = 0.0;  // k_s mu
+  double cq_s = 0.0;               // c_q x the EOS shock slope
+  double cl = 0.0;                 // c_l
+};
+
+// Reads zones.pressure; writes the batch's dA/dx_p, area and pressure, and for the edge viscosity
+// du . dx of every edge (< 0: compressing).
+template <ViscosityModel Visc>
+[[gnu::noinline]] inline void batch_geometry(ZoneBatch& batch, int count, Index first, const ZoneFields& zones) {
+  for (int i = 0; i < count; ++i) {
+    const quad::Corners x = batch.corners(i);
+    const double area = quad::area(x);
+    const std::array<Vec2, 4> b = quad::area_gradient(x);
+    for (int p = 0; p < 4; ++p) {
+      batch.bx[p][i] = b[p].x;
+      batch.by[p][i] = b[p].y;
+    }
+    batch.area[i] = area;
+    batch.pressure[i] = zones.pressure[first + i];
+    if constexpr (Visc == ViscosityModel::edge) {
+      const std::array<Vec2, 4> u = batch.velocities(i);
+      for (int k = 0; k < 4; ++k) {
+        batch.edge_compression[k][i] = dot(u[quad::next(k)] - u[k], x[quad::next(k)] - x[k]);
+      }
+    }
+  }
+}
+
+// Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only,
+// added to the batch's pressure; writes zones.viscous_speed.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_scalar_viscosity(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+                                                          const ForceSettings settings) {
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const std::array<Vec2, 4> b = batch.area_gradient(i);
+    const double area = batch.area[i];
+    double volume = area;
+    std::array<Vec2, 4> volume_gradient = b;
+    if constexpr (G == GeometryKind::axisymmetric) {
+      volume = quad::axisymmetric_volume(x);
+      volume_gradient = quad::axisymmetric_volume_gradient(x);
+    }
+    double volume_rate = 0.0;
+    for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], volume_gradient[p]);
+    const double divergence = volume_rate / volume;
+    const double rho = zones.density[z];
+    if (divergence < 0.0) {
+      const double length = quad::smallest_altitude(x, area);
+      const double speed = settings.cq_s * length * -divergence;
+      batch.pressure[i] += rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * zones.sound_speed[z]);
+      zones.viscous_speed[z] = 2.0 * speed;
+    } else {
+      zones.viscous_speed[z] = 0.0;
+    }
+  }
+}
+
+// Stress corner forces, sigma = s - p I, into the batch's forces (and mean radius V/A); one loop per
+// form, so that each has no branch. Area-weighted RZ form: also the control-volume forces (work_x/y)
+// and the area-weighted stress forces alone (planar_x/y).
+template <GeometryKind G, bool AreaWeighted>
+[[gnu::noinline]] inline void batch_stress_forces(ZoneBatch& batch, int count, Index first, const ZoneFields& zones) {
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    const std::array<Vec2, 4> b = batch.area_gradient(i);
+    const double pressure = batch.pressure[i];
+    const double sxx = zones.deviator_xx[z] - pressure;
+    const double syy = zones.deviator_yy[z] - pressure;
+    const double sxy = zones.deviator_xy[z];
+    const double stt = zones.deviator_zz[z] - pressure;
+    const double area = batch.area[i];
+    if constexpr (G == GeometryKind::axisymmetric) {
+      const quad::Corners x = batch.corners(i);
+      const double volume = quad::axisymmetric_volume(x);
+      const double mean_radius = volume / area;
+      batch.mean_radius[i] = mean_radius;
+      if constexpr (AreaWeighted) {
+        // Accelerations from Wilkins' area-weighted forces (scaled by s_p at the scatter); the zone's
+        // internal energy from the work of its control-volume forces, -V sigma : D (F4).
+        const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
+        for (int p = 0; p < 4; ++p) {
+          batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
+          batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius;
+          batch.planar_x[p][i] = batch.fx[p][i];
+          batch.planar_y[p][i] = batch.fy[p][i];
+          const Vec2 work = control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
+          batch.work_x[p][i] = work.x;
+          batch.work_y[p][i] = work.y;
+        }
+      } else {
+        const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
+        for (int p = 0; p < 4; ++p) {
+          const Vec2 f = control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
+          batch.fx[p][i] = f.x;
+          batch.fy[p][i] = f.y;
+        }
+      }
+    } else {
+      batch.mean_radius[i] = 1.0;
+      for (int p = 0; p < 4; ++p) {
+        batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
+        batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y);
+      }
+    }
+  }
+}
+
+// Edge viscosity (CSW 1998) on the compressing edges, added to the batch's forces; writes
+// zones.viscous_speed and adds each damper's dissipation to `viscous_power` in zone and edge order.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_edge_viscosity(ZoneBatch& batch, int count, Index first, Mesh& mesh,
+                                                        Index zone_begin, const ZoneForceParams& params,
+                                                        const ForceSettings settings,
+                                                        AreaWeightedArrays area_weighted_arrays,
+                                                        SharedEdgeLimiters shared_limiters, double& viscous_power) {
+  constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
+  const bool area_weighted = axisymmetric && settings.area_weighted;  // a constant false in planar code
+  ZoneFields& zones = mesh.zones;
+  double power = viscous_power;  // a local running sum (in a register), added to in the same order
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    bool expanding = true;  // no edge compressing: no viscosity
+    for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
+    if (expanding) {
+      zones.viscous_speed[z] = 0.0;
+      continue;
+    }
+    const ZoneCorners& n = zones.corners[z];
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const double rho = zones.density[z];
+    const double c = zones.sound_speed[z];
+    const Vec2 centre = quad::centre(x);
+    double viscous_speed = 0.0;
+#pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
+    for (int k = 0; k < 4; ++k) {
+      const int k1 = quad::next(k);
+      if (n[k] == n[k1]) continue;
+      const Vec2 du = u[k1] - u[k];
+      const Vec2 dx = x[k1] - x[k];
+      if (batch.edge_compression[k][i] >= 0.0) continue;  // expanding or shearing edge: no viscosity
+      const double du_norm = norm(du);
+      if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
+      const double psi = params.viscosity.limiter ? zone_edge_limiter(mesh, z, k, zone_begin, du, dx, shared_limiters)
+                                                  : 0.0;
+      const double active = 1.0 - psi;
+      if (!(active > 0.0)) continue;
+      const Vec2 median = 0.5 * (x[k] + x[k1]) - centre;  // S, from the zone centre to the edge midpoint
+      // |S| x |cos(du, n_S)|: the damper acts on the part of du across the median segment (CSW98).
+      double face = std::abs(du.y * median.x - du.x * median.y) / du_norm;
+      // RZ control volume: the radius weight w_S = (r_edge + 2 r_centre) / 3, not the radius of S's midpoint
+      // (r_edge + r_centre) / 2. The CV pressure force on corner p along z is p b_p,z (r_{p-1} + r_p + r_{p+1}) / 3
+      // (dV/dz_p), and w_S is the mean of that weight over the edge's two nodes, so that a viscous pressure
+      // acts through the same r-weights as the pressure, which the consistent nodal mass (F1) matches.
+      // Interior nodes of a uniform grid see the same sum as before; an axis node saw 3/4 of the
+      // deceleration of its neighbours off the axis (the spherical Noh's axis row, docs/verification.md).
+      if (axisymmetric && !area_weighted) face *= centre.y + median.y / 3.0;
+      const double quadratic = settings.cq_s * du_norm;
+      const double q_over_du =
+          rho * active * (quadratic + std::sqrt(quadratic * quadratic + settings.cl * settings.cl * c * c));
+      const double kappa = q_over_du * face;  // force per unit velocity difference
+      batch.fx[k][i] += kappa * du.x;
+      batch.fy[k][i] += kappa * du.y;
+      batch.fx[k1][i] -= kappa * du.x;
+      batch.fy[k1][i] -= kappa * du.y;
+      double dissipation = kappa * dot(du, du);
+      if (area_weighted) {
+        // The planar damper's work with the nodes' booking weights: in J per radian, like the other
+        // forms; their mean over the edge is an approximation.
+        dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
+      }
+      power += dissipation;
+      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+    }
+    zones.viscous_speed[z] = viscous_speed;
+  }
+  viscous_power = power;
+}
+
+// Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
+// rates, the stiffness state (zones.hourglass_x/y, intact zones only), and the batch's hourglass power.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_hourglass_forces(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+                                                          const ZoneForceParams& params, const ForceSettings settings) {
+  for (int i = 0; i < count; ++i) {
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const std::array<Vec2, 4> b = batch.area_gradient(i);
+    const std::array<double, 4> gamma = quad::hourglass_shape(x, b, batch.area[i]);
+    Vec2 rate{};
+    for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
+    double bb = 0.0;
+    for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
+    for (int p = 0; p < 4; ++p) batch.gamma[p][i] = gamma[p];
+    batch.rate_x[i] = rate.x;
+    batch.rate_y[i] = rate.y;
+    batch.bb[i] = bb;
+  }
+  if (settings.hourglass_stiff) {
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      if (!zones.active[z] || zones.damaged[z]) continue;  // damaged: no shear stiffness
+      const double area = batch.area[i];
+      zones.hourglass_x[z] += settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+      zones.hourglass_y[z] += settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    const double viscous = params.hourglass.viscous * zones.density[z] * zones.sound_speed[z] * std::sqrt(batch.area[i]);
+    const double scale = G == GeometryKind::axisymmetric && !settings.area_weighted ? batch.mean_radius[i] : 1.0;
+    const Vec2 generalised{scale * (viscous * batch.rate_x[i] + zones.hourglass_x[z]),
+                           scale * (viscous * batch.rate_y[i] + zones.hourglass_y[z])};
+    for (int p = 0; p < 4; ++p) {
+      batch.fx[p][i] -= batch.gamma[p][i] * generalised.x;
+      batch.fy[p][i] -= batch.gamma[p][i] * generalised.y;
+    }
+    batch.hourglass_power[i] = dot(generalised, Vec2{batch.rate_x[i], batch.rate_y[i]});
+  }
+}
+
+// Stores the batch's corner forces in zones.corner_force (+0 for an inactive zone; the nodes add them
+// up in zone order, `sum_corner_forces`) and adds the active zones' hourglass power, in zone order.
+// Area-weighted RZ form: the node gets s_p times the area-weighted force, and the work correction
+// turns that into the zone's own control-volume stress work plus its booked viscous and hourglass work.
+template <GeometryKind G>
+[[gnu::noinline]] inline void store_corner_forces(const ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+                                                       const ForceSettings settings,
+                                                       AreaWeightedArrays area_weighted_arrays,
+                                                       double& hourglass_power) {
+  const bool area_weighted = G == GeometryKind::axisymmetric && settings.area_weighted;
+  double power = hourglass_power;  // a local running sum, added to in the same order
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+    if (!zones.active[z]) {
+      std::fill(corner, corner + 8, 0.0);
+      continue;
+    }
+    if (settings.hourglass_on) power += batch.hourglass_power[i];
+    if (area_weighted) {
+      // Only approximately conservative: the booking weight w_p stands for the node's radius.
+      const ZoneCorners& n = zones.corners[z];
+      double* correction = &area_weighted_arrays.work_correction[8 * static_cast<std::size_t>(z)];
+      for (int p = 0; p < 4; ++p) {
+        const double s = area_weighted_arrays.scale[n[p]];
+        const double w = area_weighted_arrays.booking[n[p]];
+        corner[2 * p] = s * batch.fx[p][i];
+        corner[2 * p + 1] = s * batch.fy[p][i];
+        correction[2 * p] = batch.work_x[p][i] + w * (batch.fx[p][i] - batch.planar_x[p][i]) - corner[2 * p];
+        correction[2 * p + 1] = batch.work_y[p][i] + w * (batch.fy[p][i] - batch.planar_y[p][i]) - corner[2 * p + 1];
+      }
+    } else {
+      for (int p = 0; p < 4; ++p) {
+        corner[2 * p] = batch.fx[p][i];
+        corner[2 * p + 1] = batch.fy[p][i];
+      }
+    }
+  }
+  hourglass_power = power;
+}
+
+}  // namespace detail
+
 // Stores the corner forces of the zones in [zone_begin, zone_end) in zones.corner_force (zero for an
 // inactive zone) and the viscous signal speed in zones.viscous_speed; `sum_corner_forces` then adds
 // them up at the nodes. Velocities are read from nodes.u/v (t^{n-1/2}). Writes nothing outside its
@@ -159,252 +441,34 @@ template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_end, const ZoneForceParams& params,
                                       AreaWeightedArrays area_weighted_arrays = {},
                                       SharedEdgeLimiters shared_limiters = {}) {
-  constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
-  const bool area_weighted = axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
-  const bool hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
+  detail::ForceSettings settings;
+  settings.area_weighted = G == GeometryKind::axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
+  settings.hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
   // k_s mu: without shear stiffness (a gas, or k_s = 0) the stiffness state never changes.
-  const double stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
-  const bool hourglass_stiff = stiffness_modulus != 0.0;
-  const double cq_s = params.viscosity.quadratic * params.shock_slope;
-  const double cl = params.viscosity.linear;
+  settings.stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
+  settings.hourglass_stiff = settings.stiffness_modulus != 0.0;
+  settings.cq_s = params.viscosity.quadratic * params.shock_slope;
+  settings.cl = params.viscosity.linear;
   ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
 
   for (Index first = zone_begin; first < zone_end; first += detail::zone_batch) {
     const int count = static_cast<int>(std::min<Index>(detail::zone_batch, zone_end - first));
-
     batch.gather(mesh, first, count);
-
-    // Geometry, and for the edge viscosity du . dx of every edge (< 0: compressing).
-    for (int i = 0; i < count; ++i) {
-      const quad::Corners x = batch.corners(i);
-      const double area = quad::area(x);
-      const std::array<Vec2, 4> b = quad::area_gradient(x);
-      for (int p = 0; p < 4; ++p) {
-        batch.bx[p][i] = b[p].x;
-        batch.by[p][i] = b[p].y;
-      }
-      batch.area[i] = area;
-      batch.pressure[i] = zones.pressure[first + i];
-      if constexpr (Visc == ViscosityModel::edge) {
-        const std::array<Vec2, 4> u = batch.velocities(i);
-        for (int k = 0; k < 4; ++k) {
-          batch.edge_compression[k][i] = dot(u[quad::next(k)] - u[k], x[quad::next(k)] - x[k]);
-        }
-      }
-    }
-    // Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only.
-    if constexpr (Visc == ViscosityModel::scalar) {
-      for (int i = 0; i < count; ++i) {
-        const Index z = first + i;
-        if (!zones.active[z]) continue;
-        const quad::Corners x = batch.corners(i);
-        const std::array<Vec2, 4> u = batch.velocities(i);
-        const std::array<Vec2, 4> b = batch.area_gradient(i);
-        const double area = batch.area[i];
-        double volume = area;
-        std::array<Vec2, 4> volume_gradient = b;
-        if constexpr (axisymmetric) {
-          volume = quad::axisymmetric_volume(x);
-          volume_gradient = quad::axisymmetric_volume_gradient(x);
-        }
-        double volume_rate = 0.0;
-        for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], volume_gradient[p]);
-        const double divergence = volume_rate / volume;
-        const double rho = zones.density[z];
-        if (divergence < 0.0) {
-          const double length = quad::smallest_altitude(x, area);
-          const double speed = cq_s * length * -divergence;
-          batch.pressure[i] += rho * length * -divergence * (cq_s * length * -divergence + cl * zones.sound_speed[z]);
-          zones.viscous_speed[z] = 2.0 * speed;
-        } else {
-          zones.viscous_speed[z] = 0.0;
-        }
-      }
-    }
-
-    // Stress corner forces, sigma = s - p I (one loop per form, so that each has no branch).
-    auto stress_forces = [&]<bool AreaWeighted>() {
-      for (int i = 0; i < count; ++i) {
-        const Index z = first + i;
-        const std::array<Vec2, 4> b = batch.area_gradient(i);
-        const double pressure = batch.pressure[i];
-        const double sxx = zones.deviator_xx[z] - pressure;
-        const double syy = zones.deviator_yy[z] - pressure;
-        const double sxy = zones.deviator_xy[z];
-        const double stt = zones.deviator_zz[z] - pressure;
-        const double area = batch.area[i];
-        if constexpr (axisymmetric) {
-          const quad::Corners x = batch.corners(i);
-          const double volume = quad::axisymmetric_volume(x);
-          const double mean_radius = volume / area;
-          batch.mean_radius[i] = mean_radius;
-          if constexpr (AreaWeighted) {
-            // Accelerations from Wilkins' area-weighted forces (scaled by s_p at the scatter); the zone's
-            // internal energy from the work of its control-volume forces, -V sigma : D (F4).
-            const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
-            for (int p = 0; p < 4; ++p) {
-              batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
-              batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y) + 0.25 * area * (syy - stt) / mean_radius;
-              batch.planar_x[p][i] = batch.fx[p][i];
-              batch.planar_y[p][i] = batch.fy[p][i];
-              const Vec2 work = detail::control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
-              batch.work_x[p][i] = work.x;
-              batch.work_y[p][i] = work.y;
-            }
-          } else {
-            const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
-            for (int p = 0; p < 4; ++p) {
-              const Vec2 f = detail::control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
-              batch.fx[p][i] = f.x;
-              batch.fy[p][i] = f.y;
-            }
-          }
-        } else {
-          batch.mean_radius[i] = 1.0;
-          for (int p = 0; p < 4; ++p) {
-            batch.fx[p][i] = -(sxx * b[p].x + sxy * b[p].y);
-            batch.fy[p][i] = -(sxy * b[p].x + syy * b[p].y);
-          }
-        }
-      }
-    };
-    if (area_weighted) {
-      stress_forces.template operator()<true>();
+    detail::batch_geometry<Visc>(batch, count, first, zones);
+    if constexpr (Visc == ViscosityModel::scalar) detail::batch_scalar_viscosity<G>(batch, count, first, zones, settings);
+    if (settings.area_weighted) {
+      detail::batch_stress_forces<G, true>(batch, count, first, zones);
     } else {
-      stress_forces.template operator()<false>();
+      detail::batch_stress_forces<G, false>(batch, count, first, zones);
     }
-
     if constexpr (Visc == ViscosityModel::edge) {
-      for (int i = 0; i < count; ++i) {
-        const Index z = first + i;
-        if (!zones.active[z]) continue;
-        bool expanding = true;  // no edge compressing: no viscosity
-        for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
-        if (expanding) {
-          zones.viscous_speed[z] = 0.0;
-          continue;
-        }
-        const ZoneCorners& n = zones.corners[z];
-        const quad::Corners x = batch.corners(i);
-        const std::array<Vec2, 4> u = batch.velocities(i);
-        const double rho = zones.density[z];
-        const double c = zones.sound_speed[z];
-        const Vec2 centre = quad::centre(x);
-        double viscous_speed = 0.0;
-#pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
-        for (int k = 0; k < 4; ++k) {
-          const int k1 = quad::next(k);
-          if (n[k] == n[k1]) continue;
-          const Vec2 du = u[k1] - u[k];
-          const Vec2 dx = x[k1] - x[k];
-          if (batch.edge_compression[k][i] >= 0.0) continue;  // expanding or shearing edge: no viscosity
-          const double du_norm = norm(du);
-          if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
-          const double psi = params.viscosity.limiter
-                                 ? detail::zone_edge_limiter(mesh, z, k, zone_begin, du, dx, shared_limiters)
-                                 : 0.0;
-          const double active = 1.0 - psi;
-          if (!(active > 0.0)) continue;
-          const Vec2 median = 0.5 * (x[k] + x[k1]) - centre;  // S, from the zone centre to the edge midpoint
-          // |S| x |cos(du, n_S)|: the damper acts on the part of du across the median segment (CSW98).
-          double face = std::abs(du.y * median.x - du.x * median.y) / du_norm;
-          // RZ control volume: the radius weight w_S = (r_edge + 2 r_centre) / 3, not the radius of S's midpoint
-          // (r_edge + r_centre) / 2. The CV pressure force on corner p along z is p b_p,z (r_{p-1} + r_p + r_{p+1}) / 3
-          // (dV/dz_p), and w_S is the mean of that weight over the edge's two nodes, so that a viscous pressure
-          // acts through the same r-weights as the pressure, which the consistent nodal mass (F1) matches.
-          // Interior nodes of a uniform grid see the same sum as before; an axis node saw 3/4 of the
-          // deceleration of its neighbours off the axis (the spherical Noh's axis row, docs/verification.md).
-          if (axisymmetric && !area_weighted) face *= centre.y + median.y / 3.0;
-          const double quadratic = cq_s * du_norm;
-          const double q_over_du = rho * active * (quadratic + std::sqrt(quadratic * quadratic + cl * cl * c * c));
-          const double kappa = q_over_du * face;  // force per unit velocity difference
-          batch.fx[k][i] += kappa * du.x;
-          batch.fy[k][i] += kappa * du.y;
-          batch.fx[k1][i] -= kappa * du.x;
-          batch.fy[k1][i] -= kappa * du.y;
-          double dissipation = kappa * dot(du, du);
-          if (area_weighted) {
-            // The planar damper's work with the nodes' booking weights: in J per radian, like the other
-            // forms; their mean over the edge is an approximation.
-            dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
-          }
-          power.viscous += dissipation;
-          viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
-        }
-        zones.viscous_speed[z] = viscous_speed;
-      }
+      detail::batch_edge_viscosity<G>(batch, count, first, mesh, zone_begin, params, settings, area_weighted_arrays,
+                                      shared_limiters, power.viscous);
     }
-
-    if (hourglass_on) {
-      for (int i = 0; i < count; ++i) {
-        const quad::Corners x = batch.corners(i);
-        const std::array<Vec2, 4> u = batch.velocities(i);
-        const std::array<Vec2, 4> b = batch.area_gradient(i);
-        const std::array<double, 4> gamma = quad::hourglass_shape(x, b, batch.area[i]);
-        Vec2 rate{};
-        for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
-        double bb = 0.0;
-        for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
-        for (int p = 0; p < 4; ++p) batch.gamma[p][i] = gamma[p];
-        batch.rate_x[i] = rate.x;
-        batch.rate_y[i] = rate.y;
-        batch.bb[i] = bb;
-      }
-      if (hourglass_stiff) {
-        for (int i = 0; i < count; ++i) {
-          const Index z = first + i;
-          if (!zones.active[z] || zones.damaged[z]) continue;  // damaged: no shear stiffness
-          const double area = batch.area[i];
-          zones.hourglass_x[z] += stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
-          zones.hourglass_y[z] += stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
-        }
-      }
-      for (int i = 0; i < count; ++i) {
-        const Index z = first + i;
-        const double viscous = params.hourglass.viscous * zones.density[z] * zones.sound_speed[z] * std::sqrt(batch.area[i]);
-        const double scale = axisymmetric && !area_weighted ? batch.mean_radius[i] : 1.0;
-        const Vec2 generalised{scale * (viscous * batch.rate_x[i] + zones.hourglass_x[z]),
-                               scale * (viscous * batch.rate_y[i] + zones.hourglass_y[z])};
-        for (int p = 0; p < 4; ++p) {
-          batch.fx[p][i] -= batch.gamma[p][i] * generalised.x;
-          batch.fy[p][i] -= batch.gamma[p][i] * generalised.y;
-        }
-        batch.hourglass_power[i] = dot(generalised, Vec2{batch.rate_x[i], batch.rate_y[i]});
-      }
-    }
-
-    // Store the corner forces (the nodes add them up in zone order, `sum_corner_forces`).
-    for (int i = 0; i < count; ++i) {
-      const Index z = first + i;
-      double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
-      if (!zones.active[z]) {
-        std::fill(corner, corner + 8, 0.0);
-        continue;
-      }
-      if (hourglass_on) power.hourglass += batch.hourglass_power[i];
-      if (area_weighted) {
-        // The node gets s_p times the area-weighted force; the zone's energy sees its control-volume
-        // stress work plus the booking weight w_p times its viscous and hourglass forces (only
-        // approximately conservative).
-        const ZoneCorners& n = zones.corners[z];
-        double* correction = &area_weighted_arrays.work_correction[8 * static_cast<std::size_t>(z)];
-        for (int p = 0; p < 4; ++p) {
-          const double s = area_weighted_arrays.scale[n[p]];
-          const double w = area_weighted_arrays.booking[n[p]];
-          corner[2 * p] = s * batch.fx[p][i];
-          corner[2 * p + 1] = s * batch.fy[p][i];
-          correction[2 * p] = batch.work_x[p][i] + w * (batch.fx[p][i] - batch.planar_x[p][i]) - corner[2 * p];
-          correction[2 * p + 1] = batch.work_y[p][i] + w * (batch.fy[p][i] - batch.planar_y[p][i]) - corner[2 * p + 1];
-        }
-      } else {
-        for (int p = 0; p < 4; ++p) {
-          corner[2 * p] = batch.fx[p][i];
-          corner[2 * p + 1] = batch.fy[p][i];
-        }
-      }
-    }
+    if (settings.hourglass_on) detail::batch_hourglass_forces<G>(batch, count, first, zones, params, settings);
+    detail::store_corner_forces<G>(batch, count, first, zones, settings, area_weighted_arrays, power.hourglass);
   }
   return power;
 }

@@ -26,6 +26,23 @@ struct IdealGas {
   double shock_slope() const { return 0.25 * (gamma + 1.0); }
 };
 
+// Stiffened gas (Harlow & Amsden 1971; Saurel & Abgrall, J. Comput. Phys. 150, 1999): a liquid or a
+// gas under a constant attraction p_inf, p = (gamma - 1) rho e - gamma p_inf. It is the ideal gas in
+// the variable p + p_inf: the same adiabats and shock jump conditions with p replaced by p + p_inf,
+// and c^2 = gamma (p + p_inf) / rho. Water: gamma = 4.4, p_inf = 6e8 Pa (Saurel & Abgrall 1999), which
+// gives c = 1 625 m/s at 1 000 kg/m^3 and p = 0. p_inf = 0 is the ideal gas.
+struct StiffenedGas {
+  double gamma = 1.4;               // (-), > 1
+  double stiffness_pressure = 0.0;  // p_inf (Pa), >= 0
+
+  static constexpr std::string_view name = "stiffened_gas";
+  double pressure(double rho, double e) const { return (gamma - 1.0) * rho * e - gamma * stiffness_pressure; }
+  double sound_speed_squared(double rho, double /*e*/, double p) const {
+    return rho > 0.0 ? std::max(gamma * (p + stiffness_pressure) / rho, 0.0) : 0.0;
+  }
+  double shock_slope() const { return 0.25 * (gamma + 1.0); }
+};
+
 // Linear bulk modulus (acoustic solid or liquid): p = K (rho/rho0 - 1), independent of e.
 struct LinearBulk {
   double bulk_modulus = 0.0;       // K (Pa)
@@ -127,6 +144,10 @@ struct MieGruneisen {
 constexpr auto parameters(std::type_identity<IdealGas>) {
   return std::array{parameter::between("gamma", &IdealGas::gamma, 1.0, 10.0, true)};
 }
+constexpr auto parameters(std::type_identity<StiffenedGas>) {
+  return std::array{parameter::between("gamma", &StiffenedGas::gamma, 1.0, 10.0, true),
+                    parameter::non_negative("stiffness_pressure", &StiffenedGas::stiffness_pressure)};
+}
 constexpr auto parameters(std::type_identity<LinearBulk>) {
   return std::array{parameter::positive("bulk_modulus", &LinearBulk::bulk_modulus)};
 }
@@ -137,6 +158,6 @@ constexpr auto parameters(std::type_identity<MieGruneisen>) {
 }
 
 // The equations of state a scenario may name (`eos.model`: each model's `name`), in this order.
-using Eos = std::variant<IdealGas, LinearBulk, MieGruneisen>;
+using Eos = std::variant<IdealGas, LinearBulk, MieGruneisen, StiffenedGas>;
 
 }  // namespace krug
