@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -50,6 +52,126 @@ std::optional<std::string> nearest(std::string_view word, const std::vector<std:
   }
   return best;
 }
+
+namespace {
+
+// A SAX pass over the text that stops at the first nesting past the limit or repeated key, keeping the
+// JSON path of where it is for the message.
+class ShapeCheck : public nlohmann::json_sax<Json> {
+ public:
+  std::string problem;  // empty: the shape is fine (syntax errors are left to the parser proper)
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& key) override {
+    Frame& frame = frames_.back();
+    frame.key.clear();  // the path of the new key is this object's path plus the key
+    if (!frame.keys.insert(key).second) {
+      problem = fmt::format("{}: the key \"{}\" appears twice in one object; give each key once",
+                            path_with(key), key);
+      return false;
+    }
+    frame.key = key;
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+ private:
+  struct Frame {
+    bool object = false;
+    std::set<std::string> keys;
+    std::string key;
+    long index = -1;
+  };
+  std::vector<Frame> frames_;
+
+  std::string path() const {
+    std::string text;
+    for (const Frame& f : frames_) {
+      if (f.object) {
+        if (!f.key.empty()) text += (text.empty() ? "" : ".") + f.key;
+      } else if (f.index >= 0) {
+        text += fmt::format("[{}]", f.index);
+      }
+    }
+    return text.empty() ? "(top level)" : text;
+  }
+  std::string path_with(const std::string& key) const {
+    const std::string base = path();
+    return base == "(top level)" ? key : base + "." + key;
+  }
+  // A value begins: in an array it is the next element.
+  void begin_value() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  bool value() {
+    begin_value();
+    return true;
+  }
+  bool open(bool object) {
+    begin_value();
+    if (static_cast<int>(frames_.size()) >= max_json_depth) {
+      std::string where = path();
+      if (where.size() > 80) where = where.substr(0, 60) + "...";
+      problem = fmt::format("{}: arrays and objects nested more than {} deep; a scenario needs a few levels",
+                            where, max_json_depth);
+      return false;
+    }
+    frames_.push_back({object, {}, {}, -1});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+};
+
+}  // namespace
+
+std::string read_text_file(const std::filesystem::path& file, std::string_view what, std::uintmax_t max_bytes) {
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (error || !std::filesystem::exists(status)) {
+    throw InputError(fmt::format("{}: cannot open the {}: no such file", file.string(), what));
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(fmt::format("{}: the {} is not a regular file (a directory, a pipe or a device)", file.string(), what));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (!error && size > max_bytes) {
+    throw InputError(fmt::format("{}: the {} is {} bytes, more than the {} a {} may have", file.string(), what, size,
+                                 max_bytes, what));
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open the {}", file.string(), what));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+template <class Document>
+Document parse_document(const std::string& text, const std::string& origin) {
+  ShapeCheck check;
+  (void)Json::sax_parse(text, &check);
+  if (!check.problem.empty()) throw InputError(fmt::format("{}: {}", origin, check.problem));
+  try {
+    return Document::parse(text);
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers too large for a double (1e400)
+    throw InputError(fmt::format("{}: not valid JSON: {}", origin, e.what()));
+  }
+}
+
+template Json parse_document<Json>(const std::string&, const std::string&);
+template nlohmann::ordered_json parse_document<nlohmann::ordered_json>(const std::string&, const std::string&);
 
 std::string describe_value(const Json& value) {
   std::string text = value.dump();

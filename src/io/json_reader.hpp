@@ -4,6 +4,8 @@
 // InputError that says where, what was found and what was expected (an unknown key suggests the
 // nearest valid one, an unknown model name lists the valid ones). What is read, defaults included,
 // is copied into a "resolved" document so a run can be reproduced from its output directory.
+#include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -35,6 +37,21 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 std::optional<std::string> nearest(std::string_view word, const std::vector<std::string>& candidates);
 // A short rendering of a JSON value for error messages.
 std::string describe_value(const Json& value);
+
+// Limits on a scenario document, checked before anything is built from it.
+inline constexpr int max_json_depth = 64;                       // nested arrays and objects
+inline constexpr std::uintmax_t max_scenario_bytes = 64u << 20;  // 64 MiB
+
+// The text of a regular file of at most `max_bytes`; anything else (missing, a directory, a FIFO or
+// a device, which a reader would wait on forever, or too large) is an InputError naming the file.
+std::string read_text_file(const std::filesystem::path& file, std::string_view what,
+                           std::uintmax_t max_bytes = max_scenario_bytes);
+
+// Parses JSON text after checking its shape: nesting no deeper than max_json_depth and no key twice
+// in one object (the second would silently win). Errors are InputErrors naming `origin` and the
+// JSON path. Works for both nlohmann::json and nlohmann::ordered_json.
+template <class Document>
+Document parse_document(const std::string& text, const std::string& origin);
 
 class JsonObject {
  public:

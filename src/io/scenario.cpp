@@ -281,6 +281,18 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
   o.history_interval = output.number("history_interval", end_time / 1000.0, Range::non_negative());
   o.snapshot_interval = output.number("snapshot_interval", end_time / 10.0, Range::non_negative());
   o.checkpoint_interval = output.number("checkpoint_interval", 0.0, Range::non_negative());
+  // Intervals a run can honour: at most this many outputs of each kind over end_time (0: every cycle
+  // for the history, none for snapshots and checkpoints).
+  auto check_count = [&](const char* key, double interval, double most, const char* what) {
+    if (interval > 0.0 && end_time / interval > most) {
+      output.fail(key, fmt::format("an interval of at least end_time / {:g} = {:g} s (at most {:g} {}); {:g} s would "
+                                   "write {:.3g}",
+                                   most, end_time / most, most, what, interval, end_time / interval));
+    }
+  };
+  check_count("history_interval", o.history_interval, 1e8, "rows; 0 writes every cycle");
+  check_count("snapshot_interval", o.snapshot_interval, 1e5, "snapshots");
+  check_count("checkpoint_interval", o.checkpoint_interval, 1e4, "checkpoints");
   o.plots = output.flag("plots", true);
   {
     JsonObject pictures = output.object_or_empty("pictures");
@@ -383,12 +395,7 @@ const std::vector<std::string>& picture_fields() {
 }
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
-  Json document;
-  try {
-    document = Json::parse(json_text);
-  } catch (const Json::exception& e) {  // syntax errors, and numbers too large for a double (1e400)
-    throw InputError(fmt::format("{}: not valid JSON: {}", origin, e.what()));
-  }
+  const Json document = parse_document<Json>(json_text, origin);
   Scenario scenario;
   Json resolved = Json::object();
   JsonObject top(document, "", &resolved);
@@ -485,11 +492,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
 }
 
 Scenario load_scenario(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("{}: cannot open the scenario file", file.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  Scenario scenario = parse_scenario(buffer.str(), file.string());
+  Scenario scenario = parse_scenario(read_text_file(file, "scenario file"), file.string());
   scenario.source = file;
   if (scenario.output.directory.empty()) scenario.output.directory = "out/" + file.stem().string();
   return scenario;

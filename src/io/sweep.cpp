@@ -10,6 +10,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/io/outputs.hpp"
+#include "json_reader.hpp"
 #include "krug/io/scenario.hpp"
 
 namespace krug::io {
@@ -181,16 +182,7 @@ SweepParameter parse_sweep_set(const std::string& argument) {
 std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_file,
                                         const std::vector<SweepParameter>& parameters,
                                         const std::filesystem::path& directory) {
-  std::ifstream in(scenario_file);
-  if (!in) throw InputError(fmt::format("{}: cannot open the scenario file", scenario_file.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  OrderedJson base;
-  try {
-    base = OrderedJson::parse(buffer.str());
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not valid JSON: {}", scenario_file.string(), e.what()));
-  }
+  OrderedJson base = parse_document<OrderedJson>(read_text_file(scenario_file, "scenario file"), scenario_file.string());
   if (parameters.empty()) throw InputError("krug sweep: give at least one --set PATH=VALUE1,VALUE2,...");
   std::size_t count = 1;
   for (const SweepParameter& p : parameters) {

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <fmt/format.h>
@@ -202,6 +203,14 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     body.node_end = patch.node_end;
     body.zone_begin = patch.zone_begin;
     body.zone_end = patch.zone_end;
+    for (Index n = body.node_begin; n < body.node_end; ++n) {
+      const double x = setup.mesh.nodes.x[n], y = setup.mesh.nodes.y[n];
+      if (!(std::abs(x) <= max_coordinate && std::abs(y) <= max_coordinate)) {
+        fail(where.back() + ".mesh", fmt::format("a node at ({:g}, {:g}) m lies beyond {:g} m of the origin; Krug's "
+                                                 "scenarios are in SI units (m)",
+                                                 x, y, max_coordinate));
+      }
+    }
     if (scene.geometry == GeometryKind::axisymmetric) {
       for (Index n = body.node_begin; n < body.node_end; ++n) {
         if (setup.mesh.nodes.y[n] < 0.0) {

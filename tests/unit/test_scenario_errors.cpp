@@ -3,7 +3,11 @@
 // valid ones. Through the library API (krug::io::parse_scenario).
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <string>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -180,4 +184,58 @@ TEST_CASE("an end time beyond the cycle budget is refused before the run", "[sce
   CHECK_THAT(e, Catch::Contains("(set by zone "));
   // Within budget: accepted.
   CHECK_NOTHROW(krug::run::validate_scenario(parse_scenario(two_blocks(0.01), "test.json")));
+}
+
+TEST_CASE("documents that would crash or hang a reader are refused with the place named", "[scenario][robustness]") {
+  SECTION("nesting deeper than the limit (a recursive reader's stack overflow)") {
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const std::string e = error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": " + deep));
+    CHECK_THAT(e, Catch::StartsWith("test.json: end_time[0][0]"));
+    CHECK_THAT(e, Catch::Contains("nested more than 64 deep"));
+    // A few levels are fine for the shape check (then refused by the reader for the type).
+    CHECK_THAT(error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": [[[0.1]]]")),
+               Catch::StartsWith("end_time: expected a number"));
+  }
+  SECTION("a key given twice: the second would silently win") {
+    const std::string e = error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": 0.1, \"end_time\": -1"));
+    CHECK(e == "test.json: end_time: the key \"end_time\" appears twice in one object; give each key once");
+    const std::string nested = error_of(replaced(valid_scenario(), "\"zones\": 4 },", "\"zones\": 4, \"zones\": 5 },"));
+    CHECK_THAT(nested, Catch::StartsWith("test.json: bodies[0].mesh.x.zones: the key \"zones\" appears twice"));
+  }
+  SECTION("output intervals that would write without end") {
+    const std::string e = error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": 0.1, \"output\": { \"snapshot_interval\": 1e-320 }"));
+    CHECK_THAT(e, Catch::StartsWith("output.snapshot_interval: expected an interval of at least end_time / 100000"));
+    CHECK_THAT(error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": 0.1, \"output\": { \"history_interval\": 1e-12 }")),
+               Catch::StartsWith("output.history_interval:"));
+    CHECK_THAT(error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": 0.1, \"output\": { \"checkpoint_interval\": 1e-9 }")),
+               Catch::StartsWith("output.checkpoint_interval:"));
+    // Within the limit: accepted.
+    CHECK(error_of(replaced(valid_scenario(), "\"end_time\": 0.1", "\"end_time\": 0.1, \"output\": { \"snapshot_interval\": 2e-6 }")) == "(no error)");
+  }
+  SECTION("coordinates beyond reason (a unit slip, or 1e300)") {
+    const std::string e = error_of(replaced(valid_scenario(), "\"to\": 1, \"zones\": 4 },", "\"to\": 1e300, \"zones\": 4 },"));
+    CHECK_THAT(e, Catch::StartsWith("bodies[0].mesh: a node at ("));
+    CHECK_THAT(e, Catch::Contains("beyond 10000 m"));
+  }
+}
+
+TEST_CASE("a scenario path that is not a regular file is refused, not waited on", "[scenario][robustness]") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("krug_fifo_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path fifo = dir / "scenario.json";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::string e = "(no error)";
+  try {
+    (void)krug::io::load_scenario(fifo);
+  } catch (const InputError& error) {
+    e = error.what();
+  }
+  CHECK_THAT(e, Catch::Contains("is not a regular file"));
+  try {
+    (void)krug::io::load_scenario(dir);
+  } catch (const InputError& error) {
+    e = error.what();
+  }
+  CHECK_THAT(e, Catch::Contains("is not a regular file"));
+  std::filesystem::remove_all(dir);
 }

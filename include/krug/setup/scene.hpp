@@ -22,6 +22,9 @@ namespace krug::setup {
 
 // Zones a scene may ask for: about 10 GB of state; beyond this the machine runs out.
 inline constexpr long max_zones = 20'000'000;
+// Node coordinates a scene may have (m): an impact problem is metres across, not kilometres; a
+// coordinate beyond this is a unit slip or a typing error (1e300).
+inline constexpr double max_coordinate = 1e4;
 
 // A field over a body: its value at a point (first, second coordinate in m).
 using PointFunction = std::function<double(double first, double second)>;
