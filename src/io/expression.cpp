@@ -1,5 +1,6 @@
 #include "expression.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -19,12 +20,33 @@ struct Expression::Impl {
 Expression::Expression(const std::string& text, const std::string& first_variable,
                        const std::string& second_variable, const std::string& path)
     : impl_(std::make_unique<Impl>()), path_(path) {
+  // Only a pure expression of the documented variables: no assignment (x = 3, x += 1), no list of
+  // several results (1, 2), and a bounded size and nesting (the parser recurses on parentheses).
+  auto refuse = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: expression \"{}\" {}; expected one formula in {}, {} and pi", path,
+                                 text.size() > 60 ? text.substr(0, 57) + "..." : text, why, first_variable,
+                                 second_variable));
+  };
+  if (text.size() > 1000) refuse(fmt::format("is {} characters long, more than 1000", text.size()));
+  int depth = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '(') ++depth;
+    if (c == '(' && depth > 32) refuse("nests parentheses more than 32 deep");
+    if (c == ')') --depth;
+    if (c == '=') {
+      const char before = i > 0 ? text[i - 1] : ' ', after = i + 1 < text.size() ? text[i + 1] : ' ';
+      const bool comparison = after == '=' || before == '=' || before == '<' || before == '>' || before == '!';
+      if (!comparison) refuse("assigns a value (=); a formula has no assignment");
+    }
+  }
   try {
     impl_->parser.DefineVar(first_variable, &impl_->first);
     impl_->parser.DefineVar(second_variable, &impl_->second);
     impl_->parser.DefineConst("pi", std::numbers::pi);
     impl_->parser.SetExpr(text);
     (void)impl_->parser.Eval();  // reports syntax errors and unknown names now, not mid-run
+    if (impl_->parser.GetNumResults() != 1) refuse("gives a list of values (a comma outside a function's arguments)");
   } catch (const mu::Parser::exception_type& e) {
     throw InputError(fmt::format("{}: cannot evaluate expression \"{}\": {} (variables: {}, {}, pi)", path, text,
                                  e.GetMsg(), first_variable, second_variable));

@@ -69,6 +69,17 @@ setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry) {
     spec.optional_raw("map");
   }
   if (type == "rectangle") {
+    // The other geometry's axis names are a likely slip: name the key that was written.
+    const AxisNames other = axis_names(geometry == GeometryKind::planar ? GeometryKind::axisymmetric : GeometryKind::planar);
+    for (const std::string& written : {other.first, other.second}) {
+      if (spec.has(written) && written != names.first && written != names.second) {
+        throw InputError(fmt::format("{}: {} rectangle names its axes \"{}\" and \"{}\"; found \"{}\" (an axis of {} "
+                                     "geometry)",
+                                     spec.path_of(written), geometry == GeometryKind::planar ? "a planar" : "an axisymmetric",
+                                     names.first, names.second, written,
+                                     geometry == GeometryKind::planar ? "axisymmetric" : "planar"));
+      }
+    }
     setup::RectangleMesh rectangle;
     rectangle.first = read_axis(spec.object(names.first));
     rectangle.second = read_axis(spec.object(names.second));
@@ -97,6 +108,12 @@ setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry) {
     sector.radii = read_axis(spec.object("radius"));
     sector.angles = read_axis(spec.object("angle"), std::numbers::pi / 180.0);
     if (sector.radii.front() < 0.0) spec.fail_here("radius.from must be >= 0");
+    const double from = sector.angles.front() * 180.0 / std::numbers::pi, to = sector.angles.back() * 180.0 / std::numbers::pi;
+    if (from < -360.0 || to > 360.0 || to - from > 360.0 * (1.0 + 1e-12)) {
+      throw InputError(fmt::format("{}: the angles run from {:g} to {:g} degrees; expected a span of at most 360 degrees "
+                                   "within [-360, 360] (angles are in degrees)",
+                                   spec.path_of("angle"), from, to));
+    }
     result.shape = std::move(sector);
   }
   spec.finish();

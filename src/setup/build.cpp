@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -46,6 +47,9 @@ generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, In
   }
   if (const auto* sector = std::get_if<SectorMesh>(&description.shape)) {
     if (sector->radii.front() < 0.0) fail(where, "radius.from must be >= 0");
+    if (sector->angles.back() - sector->angles.front() > 2.0 * std::numbers::pi * (1.0 + 1e-12)) {
+      fail(where, fmt::format("the sector spans {:g} radians; at most 2 pi", sector->angles.back() - sector->angles.front()));
+    }
     check_zone_count(static_cast<long>(sector->radii.size() - 1) * static_cast<long>(sector->angles.size() - 1), where);
     return generate::sector(mesh, sector->radii, sector->angles, body, description.map);
   }

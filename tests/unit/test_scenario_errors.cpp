@@ -239,3 +239,40 @@ TEST_CASE("a scenario path that is not a regular file is refused, not waited on"
   CHECK_THAT(e, Catch::Contains("is not a regular file"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("wrong input that used to pass: angles, expressions, the other geometry's axes", "[scenario][robustness]") {
+  const std::string rectangle = "\"mesh\": { \"type\": \"rectangle\", \"x\": { \"from\": 0, \"to\": 1, \"zones\": 4 },\n"
+                                "                                                 \"y\": { \"from\": 0, \"to\": 1, \"zones\": 4 } }";
+  auto sector = [&](const std::string& angles) {
+    return replaced(valid_scenario(), rectangle,
+                    "\"mesh\": { \"type\": \"sector\", \"radius\": { \"from\": 0.1, \"to\": 1, \"zones\": 4 }, \"angle\": " +
+                        angles + " }");
+  };
+  SECTION("a sector of more than a full turn, or angles in radians beyond the turn") {
+    CHECK(error_of(replaced(sector("{ \"from\": 0, \"to\": 90, \"zones\": 4 }"), "\"boundary\": { \"x_min\": \"slip\" }",
+                            "\"boundary\": {}")) == "(no error)");
+    CHECK_THAT(error_of(sector("{ \"from\": 0, \"to\": 720, \"zones\": 4 }")),
+               Catch::StartsWith("bodies[0].mesh.angle: the angles run from 0 to 720 degrees"));
+    CHECK_THAT(error_of(sector("{ \"from\": -400, \"to\": 0, \"zones\": 4 }")), Catch::Contains("within [-360, 360]"));
+  }
+  SECTION("expressions: only one formula, no assignment, bounded nesting") {
+    auto density = [&](const std::string& expression) {
+      return error_of(replaced(valid_scenario(), "\"specific_internal_energy\": 2.5",
+                               "\"specific_internal_energy\": 2.5, \"density\": \"" + expression + "\""));
+    };
+    CHECK(density("(x <= 0.5) ? 1 : 0.125") == "(no error)");
+    CHECK(density("1 + (x == 0.25) + (y != 1) + (x >= 2)") == "(no error)");
+    CHECK_THAT(density("x = 3"), Catch::Contains("assigns a value"));
+    CHECK_THAT(density("x += 3"), Catch::Contains("assigns a value"));
+    CHECK_THAT(density("1, 2"), Catch::Contains("gives a list of values"));
+    CHECK_THAT(density(std::string(40, '(') + "1" + std::string(40, ')')), Catch::Contains("more than 32 deep"));
+    CHECK_THAT(density(std::string(1000, '(') + "1" + std::string(1000, ')')), Catch::Contains("more than 1000"));
+    CHECK_THAT(density("x = 3"), Catch::StartsWith("bodies[0].initial.density: expression \"x = 3\""));
+  }
+  SECTION("a rectangle written with the other geometry's axis names names the key written") {
+    const std::string e = error_of(replaced(valid_scenario(), "\"x\": { \"from\": 0, \"to\": 1, \"zones\": 4 }",
+                                            "\"z\": { \"from\": 0, \"to\": 1, \"zones\": 4 }"));
+    CHECK(e == "bodies[0].mesh.z: a planar rectangle names its axes \"x\" and \"y\"; found \"z\" (an axis of "
+               "axisymmetric geometry)");
+  }
+}
