@@ -296,19 +296,53 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   steps.smallest_zone = r.value<std::int32_t>();
   steps.smallest_limit = r.value<std::int32_t>();
   if (r.position() != body_end) r.corrupt("unexpected bytes after the last field");
-  // Consistency of the sizes read (a checkpoint that passed its checksum but was written wrongly).
+  // Consistency of what was read (a checkpoint that passed its checksum but was written wrongly, or
+  // resealed after an edit): every field of the registry has its entries per node or zone, every
+  // particle field one entry per particle, and every index points inside its range.
   const auto nodes = s.mesh.nodes.x.size();
   const auto zones = s.mesh.zones.corners.size();
-  for (const auto* v : {&s.mesh.nodes.y, &s.mesh.nodes.u, &s.mesh.nodes.v, &s.mesh.nodes.mass}) {
-    if (v->size() != nodes) r.corrupt("node fields of different lengths");
+  for_each_node_field(s.mesh.nodes, [&](std::string_view field_name, const auto& field, std::size_t per, auto) {
+    if (field.size() != nodes * per) r.corrupt(fmt::format("node field {} has {} entries for {} nodes", field_name, field.size(), nodes));
+  });
+  for_each_zone_field(s.mesh.zones, [&](std::string_view field_name, const auto& field, std::size_t per, auto) {
+    if (field.size() != zones * per) r.corrupt(fmt::format("zone field {} has {} entries for {} zones", field_name, field.size(), zones));
+  });
+  if (!s.zones_per_node.empty() && s.zones_per_node.size() != nodes) {
+    r.corrupt("the zone count per node has the wrong length");  // empty without fracture
   }
-  if (s.mesh.zones.density.size() != zones || s.mesh.zones.active.size() != zones) {
-    r.corrupt("zone fields of different lengths");
+  const auto particles = s.particles.x.size();
+  for (const auto* v : {&s.particles.y, &s.particles.u, &s.particles.v, &s.particles.u_old, &s.particles.v_old,
+                        &s.particles.mass, &s.particles.radius, &s.particles.birth_time}) {
+    if (v->size() != particles) r.corrupt("particle fields of different lengths");
   }
+  if (s.particles.body.size() != particles) r.corrupt("particle fields of different lengths");
+  const auto bodies = s.fracture_counts.size();
+  auto in_range = [](Index i, std::size_t size) { return i >= 0 && static_cast<std::size_t>(i) < size; };
   for (const ZoneCorners& corners : s.mesh.zones.corners) {
     for (Index n : corners) {
-      if (n < 0 || static_cast<std::size_t>(n) >= nodes) r.corrupt("a zone corner outside the node range");
+      if (!in_range(n, nodes)) r.corrupt("a zone corner outside the node range");
     }
+  }
+  for (const auto* list : {&s.mesh.zones.edge_before, &s.mesh.zones.edge_after}) {
+    for (const ZoneCorners& entry : *list) {
+      for (Index n : entry) {
+        if (n != -1 && !in_range(n, nodes)) r.corrupt("an edge continuation outside the node range");
+      }
+    }
+  }
+  for (const ZoneCorners& entry : s.mesh.zones.neighbour) {
+    for (Index z : entry) {
+      if (z != -1 && !in_range(z, zones)) r.corrupt("a zone neighbour outside the zone range");
+    }
+  }
+  for (Index b : s.mesh.zones.body) {
+    if (!in_range(b, bodies)) r.corrupt("a zone's body outside the body range");
+  }
+  for (Index b : s.mesh.nodes.body) {
+    if (b != -1 && !in_range(b, bodies)) r.corrupt("a node's body outside the body range");
+  }
+  for (Index b : s.particles.body) {
+    if (!in_range(b, bodies)) r.corrupt("a particle's body outside the body range");
   }
   return c;
 }
