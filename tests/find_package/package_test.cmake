@@ -3,6 +3,8 @@
 #   install   bring the installed targets up to date, then install the build tree into KRUG_PREFIX
 #   consumer  configure tests/find_package with CMAKE_PREFIX_PATH=KRUG_PREFIX, build it, run it
 #   config    check the installed package files name no dependency the library does not need
+#   staged    install with DESTDIR=KRUG_STAGE and a system-like prefix; every file must land under
+#             KRUG_STAGE/<prefix>, the app's plotting script among them
 cmake_minimum_required(VERSION 3.22)
 include(${KRUG_SETTINGS})
 
@@ -24,6 +26,27 @@ if(KRUG_STEP STREQUAL "install")
   if(NOT config_files)
     message(FATAL_ERROR "no KrugConfig.cmake under ${KRUG_PREFIX}")
   endif()
+
+elseif(KRUG_STEP STREQUAL "staged")
+  set(prefix /opt/krug-staged)
+  file(REMOVE_RECURSE ${KRUG_STAGE})
+  set(ENV{DESTDIR} ${KRUG_STAGE})
+  run_step("cmake --install with DESTDIR" ${CMAKE_COMMAND} --install ${KRUG_BINARY_DIR} --prefix ${prefix}
+           --config ${KRUG_BUILD_TYPE})
+  file(GLOB_RECURSE staged LIST_DIRECTORIES false RELATIVE ${KRUG_STAGE} ${KRUG_STAGE}/*)
+  if(NOT staged)
+    message(FATAL_ERROR "nothing was installed under ${KRUG_STAGE}")
+  endif()
+  foreach(file IN LISTS staged)
+    if(NOT file MATCHES "^opt/krug-staged/")
+      message(FATAL_ERROR "installed outside the prefix ${prefix}: /${file}")
+    endif()
+  endforeach()
+  if(EXISTS ${KRUG_STAGE}${prefix}/bin/krug AND NOT EXISTS ${KRUG_STAGE}${prefix}/share/krug/plot_history.py)
+    message(FATAL_ERROR "the app's plot_history.py is not under ${prefix}/share/krug")
+  endif()
+  list(LENGTH staged count)
+  message(STATUS "${count} files, all under ${prefix}")
 
 elseif(KRUG_STEP STREQUAL "consumer")
   file(REMOVE_RECURSE ${KRUG_CONSUMER_BUILD})

@@ -6,13 +6,16 @@
 #                                          find_package(Krug CONFIG REQUIRED), builds it and runs it
 #   package_config_dependencies            the installed KrugConfig.cmake names no optional (app-only)
 #                                          dependency such as Cairo or a plotting library
+#   package_staged_install_stays_under_its_prefix
+#                                          installs with DESTDIR into a staging folder (no root
+#                                          needed) and checks every file lands under the prefix
 #
 # Run with `ctest -L package` after building all targets.
 set(KRUG_PACKAGE_TEST_DIR ${PROJECT_BINARY_DIR}/package-test)
 set(KRUG_PACKAGE_PREFIX ${KRUG_PACKAGE_TEST_DIR}/install)
 
 # Everything `cmake --install` copies must exist: the libraries and, when built, the app.
-set(KRUG_PACKAGE_INSTALLED_TARGETS krug_mesh krug_contact krug_solver krug_io krug_run)
+set(KRUG_PACKAGE_INSTALLED_TARGETS krug_mesh krug_contact krug_solver krug_setup krug_io krug_run)
 if(TARGET krug_app)
   list(APPEND KRUG_PACKAGE_INSTALLED_TARGETS krug_app)
 endif()
@@ -49,3 +52,10 @@ add_test(NAME package_config_dependencies
                  -P ${CMAKE_CURRENT_LIST_DIR}/package_test.cmake)
 set_tests_properties(package_config_dependencies PROPERTIES
   LABELS package TIMEOUT 60 FIXTURES_REQUIRED krug_installed RESOURCE_LOCK krug_package_prefix)
+
+add_test(NAME package_staged_install_stays_under_its_prefix
+         COMMAND ${CMAKE_COMMAND} -DKRUG_SETTINGS=${KRUG_PACKAGE_SETTINGS} -DKRUG_STEP=staged
+                 -DKRUG_STAGE=${KRUG_PACKAGE_TEST_DIR}/stage
+                 -P ${CMAKE_CURRENT_LIST_DIR}/package_test.cmake)
+set_tests_properties(package_staged_install_stays_under_its_prefix PROPERTIES
+  LABELS package TIMEOUT 600 FIXTURES_REQUIRED krug_installed RESOURCE_LOCK krug_package_prefix)
