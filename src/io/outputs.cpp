@@ -1,6 +1,14 @@
 #include "krug/io/outputs.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -173,12 +181,46 @@ std::vector<std::string> penetration_lines(const RunResult& result) {
   return lines;
 }
 
+LineFile::~LineFile() {
+  try {
+    flush();
+  } catch (const InputError&) {
+    // a destructor may not throw; the lines already written stay whole
+  }
+  if (descriptor_ >= 0) ::close(descriptor_);
+}
+
+void LineFile::open(const std::filesystem::path& file, bool append) {
+  if (descriptor_ >= 0) ::close(descriptor_);
+  file_ = file;
+  pending_.clear();
+  descriptor_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0644);
+  if (descriptor_ < 0) throw InputError(fmt::format("{}: cannot write: {}", file.string(), std::strerror(errno)));
+}
+
+void LineFile::append(std::string_view lines) {
+  pending_.append(lines);
+  const auto now = std::chrono::steady_clock::now();
+  if (pending_.size() >= (64u << 10) || now - last_write_ >= std::chrono::seconds(1)) flush();
+}
+
+void LineFile::flush() {
+  std::size_t done = 0;
+  while (descriptor_ >= 0 && done < pending_.size()) {
+    const ssize_t written = ::write(descriptor_, pending_.data() + done, pending_.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) throw InputError(fmt::format("{}: cannot write: {}", file_.string(), std::strerror(errno)));
+    done += static_cast<std::size_t>(written);
+  }
+  pending_.clear();
+  last_write_ = std::chrono::steady_clock::now();
+}
+
 RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
                          PictureHook picture_hook)
     : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
-  open(scenario);
-  history_.open(directory_ / "history.csv", std::ios::trunc);
-  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+  open(scenario, true);
+  history_.open(directory_ / "history.csv", false);
   append_history(history_header(simulation));
   write_history_row(simulation);
   write_snapshot(simulation);
@@ -192,7 +234,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
                          PictureHook picture_hook, const RunProgress& resume,
                          const std::filesystem::path& previous_directory)
     : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
-  open(scenario);
+  open(scenario, false);
   std::error_code error;
   const bool same = std::filesystem::equivalent(directory_, previous_directory, error);
   const std::filesystem::path history = directory_ / "history.csv";
@@ -219,8 +261,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
     write_text_atomically(history, history_header(simulation));
     history_bytes_ = std::filesystem::file_size(history);
   }
-  history_.open(history, std::ios::app);
-  if (!history_) throw InputError(fmt::format("{}: cannot write history.csv", directory_.string()));
+  history_.open(history, true);
   snapshots_ = resume.snapshots;
   particle_snapshots_ = resume.particle_snapshots;
   time_steps_ = resume.time_steps;
@@ -228,10 +269,39 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
   next_snapshot_time_ = resume.next_snapshot_time;
 }
 
-void RunRecorder::open(const Scenario& scenario) {
+void RunRecorder::open(const Scenario& scenario, bool fresh) {
   std::error_code error;
   std::filesystem::create_directories(directory_ / "snapshots", error);
   if (error) throw InputError(fmt::format("{}: cannot create the output directory: {}", directory_.string(), error.message()));
+  const std::filesystem::path lock = directory_ / ".krug-lock";
+  lock_descriptor_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_descriptor_ < 0) {
+    throw InputError(fmt::format("{}: cannot write in the output directory: {}", directory_.string(), std::strerror(errno)));
+  }
+  if (::flock(lock_descriptor_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(lock_descriptor_);
+    lock_descriptor_ = -1;
+    throw InputError(fmt::format("{}: another krug run is writing its outputs here; give this run another --out",
+                                 directory_.string()));
+  }
+  if (fresh) {
+    // What an earlier run into this directory wrote, by name; other files are left alone.
+    auto remove_matching = [&](const std::filesystem::path& folder, const std::vector<std::string>& prefixes,
+                               const std::vector<std::string>& extensions) {
+      for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+        const std::string name = entry.path().filename().string();
+        const bool prefix = std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return name.rfind(p, 0) == 0; });
+        const bool extension = std::find(extensions.begin(), extensions.end(), entry.path().extension().string()) != extensions.end();
+        if (entry.is_regular_file() && prefix && extension) std::filesystem::remove(entry.path(), error);
+      }
+    };
+    remove_matching(directory_ / "snapshots", {"state_", "particles_"}, {".vtu", ".vtp"});
+    remove_matching(directory_ / "pictures", {""}, {".png"});
+    remove_matching(directory_ / "plots", {""}, {".png"});
+    for (const char* name : {"summary.json", "final.vtu", "final_particles.vtp", "run.pvd", "checkpoint.bin"}) {
+      std::filesystem::remove(directory_ / name, error);
+    }
+  }
   write_text_atomically(directory_ / "scenario.resolved.json", scenario.resolved_json + "\n");
 }
 
@@ -259,7 +329,7 @@ std::string RunRecorder::history_header(const Simulation& simulation) {
 }
 
 void RunRecorder::append_history(const std::string& text) {
-  history_ << text;
+  history_.append(text);
   history_bytes_ += text.size();
 }
 
@@ -267,7 +337,9 @@ void RunRecorder::picture(const Simulation& simulation, const std::string& name)
   if (picture_ && settings_.pictures.enabled) picture_(simulation, directory_, name);
 }
 
-RunRecorder::~RunRecorder() = default;
+RunRecorder::~RunRecorder() {
+  if (lock_descriptor_ >= 0) ::close(lock_descriptor_);  // releases the directory's lock
+}
 
 void RunRecorder::write_history_row(const Simulation& simulation) {
   const double whole = simulation.whole_body_factor();
@@ -324,9 +396,10 @@ void RunRecorder::observe(const Simulation& simulation) {
   count_time_step(simulation);
   if (simulation.time() >= next_history_time_ * (1.0 - 1e-12)) {
     write_history_row(simulation);
-    while (next_history_time_ <= simulation.time()) {
-      next_history_time_ += settings_.history_interval > 0.0 ? settings_.history_interval : simulation.time();
-      if (settings_.history_interval <= 0.0) break;
+    if (settings_.history_interval > 0.0) {
+      while (next_history_time_ <= simulation.time()) next_history_time_ += settings_.history_interval;
+    } else {
+      next_history_time_ = simulation.time();  // 0: a row every cycle
     }
   }
   if (simulation.time() >= next_snapshot_time_ * (1.0 - 1e-12) && !simulation.finished()) {

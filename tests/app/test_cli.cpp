@@ -190,3 +190,59 @@ TEST_CASE("Ctrl-C writes a checkpoint and exits 130, and krug run --restart fini
     CHECK(after["cycles"].get<long>() > summary["cycles"].get<long>());
   }
 }
+
+TEST_CASE("a killed run leaves whole files, a rerun clears the earlier run's outputs, and one run writes in a directory at a time",
+          "[app][cli][robustness]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_whole_files");
+  Json document = krug::test::read_json(example("taylor_bar.json"));
+  document["end_time"] = 1.0;  // cannot finish before the kill
+  document["output"] = {{"history_interval", 0.0}, {"snapshot_interval", 1e-5}, {"plots", false},
+                        {"pictures", {{"enabled", false}}}};
+  krug::test::write_text(dir / "scenario.json", document.dump(2));
+  const fs::path out = dir / "out";
+
+  // A stale output of an earlier run, and a file of the user's, in the directory.
+  fs::create_directories(out / "snapshots");
+  fs::create_directories(out / "pictures");
+  krug::test::write_text(out / "snapshots" / "state_09999.vtu", "stale");
+  krug::test::write_text(out / "pictures" / "state_09999.png", "stale");
+  krug::test::write_text(out / "notes.txt", "mine");
+
+  const pid_t pid = krug::test::start_krug({"run", (dir / "scenario.json").string(), "--out", out.string()},
+                                           dir / "run.log");
+  for (int i = 0; i < 600 && lines_of(out / "history.csv") < 50; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  // A second run into the same directory while the first writes there is refused (exit 2).
+  const auto second = run_krug({"run", (dir / "scenario.json").string(), "--out", out.string()}, dir / "second.log");
+  CHECK(second.exit_code == 2);
+  CHECK_THAT(second.output, Catch::Contains("another krug run is writing its outputs here"));
+
+  kill(pid, SIGKILL);
+  CHECK(krug::test::wait_exit_code(pid) == 128 + SIGKILL);
+  // history.csv: whole lines only, each with the header's number of columns.
+  const std::string history = krug::test::read_text(out / "history.csv");
+  REQUIRE(!history.empty());
+  CHECK(history.back() == '\n');
+  std::size_t columns = 0, rows = 0;
+  for (std::size_t start = 0; start < history.size();) {
+    const std::size_t end = history.find('\n', start);
+    const std::string line = history.substr(start, end - start);
+    const std::size_t count = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+    if (rows == 0) columns = count;
+    CHECK(count == columns);
+    ++rows;
+    start = end + 1;
+  }
+  CHECK(rows >= 50);
+  // The earlier run's files are gone, the user's file stays.
+  CHECK_FALSE(fs::exists(out / "snapshots" / "state_09999.vtu"));
+  CHECK_FALSE(fs::exists(out / "pictures" / "state_09999.png"));
+  CHECK(krug::test::read_text(out / "notes.txt") == "mine");
+  // Every snapshot file is whole XML (written to a temporary and renamed).
+  for (const auto& entry : fs::directory_iterator(out / "snapshots")) {
+    const std::string text = krug::test::read_text(entry.path());
+    CHECK(text.find("</VTKFile>") != std::string::npos);
+  }
+}

@@ -2,12 +2,14 @@
 // Run outputs: summary.json (the fixed contract of docs/outputs.md), history.csv, VTK XML snapshots
 // (.vtu per snapshot with a .pvd collection) and the resolved scenario. Files are written under a
 // temporary name and renamed, so a reader never sees half a file.
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "krug/io/checkpoint.hpp"
@@ -45,6 +47,27 @@ std::string summary_json(const Simulation& simulation, const RunResult& result);
 // The penetration result in a few lines for the console (empty without a penetration block).
 std::vector<std::string> penetration_lines(const RunResult& result);
 
+// A text file appended to in whole lines: the lines are kept in memory and written with one write()
+// call per batch (64 KiB or a second's worth, or at flush()), so a process killed at any moment
+// leaves only whole lines.
+class LineFile {
+ public:
+  LineFile() = default;
+  ~LineFile();
+  LineFile(const LineFile&) = delete;
+  LineFile& operator=(const LineFile&) = delete;
+  // Opens (creates) the file, emptied or appended to; an InputError if it cannot be written.
+  void open(const std::filesystem::path& file, bool append);
+  void append(std::string_view lines);  // one or more whole lines, each ending in '\n'
+  void flush();
+
+ private:
+  int descriptor_ = -1;
+  std::string pending_;
+  std::chrono::steady_clock::time_point last_write_{};
+  std::filesystem::path file_;
+};
+
 // Writes history rows and snapshots while a run goes on, and the final files when it ends.
 class RunRecorder {
  public:
@@ -66,7 +89,10 @@ class RunRecorder {
   RunProgress progress();
 
  private:
-  void open(const Scenario& scenario);  // the directory and scenario.resolved.json
+  // The directory (locked for this run: a second run into it is refused) and scenario.resolved.json;
+  // a fresh run first removes the outputs an earlier run left there (snapshots, pictures, plots,
+  // summary, final state, checkpoint), so that none is mistaken for this run's.
+  void open(const Scenario& scenario, bool fresh);
   static std::string history_header(const Simulation& simulation);
   void append_history(const std::string& text);
   void write_history_row(const Simulation& simulation);
@@ -76,7 +102,8 @@ class RunRecorder {
 
   std::filesystem::path directory_;
   OutputSettings settings_;
-  std::ofstream history_;
+  int lock_descriptor_ = -1;  // holds the directory's lock (flock on .krug-lock) while the recorder lives
+  LineFile history_;
   std::uint64_t history_bytes_ = 0;  // written to history.csv so far
   double next_history_time_ = 0.0;
   double next_snapshot_time_ = 0.0;
