@@ -78,8 +78,47 @@ fracture::ErosionLimits read_erosion(JsonObject spec, fracture::ErosionLimits ba
   return base;
 }
 
+// The plausibility checks a physicist would make of a solid's data and of a scenario's speeds and
+// angles; each catches a unit slip (GPa for Pa, g/cm^3 for kg/m^3, percent, radians, km/s) that would
+// otherwise run and fail later for an unrelated reason. A deliberate exception is named in the
+// top-level "allow_unusual" list.
+struct Allowances {
+  std::set<std::string> allowed;
+  bool allows(const std::string& check) const { return allowed.count(check) > 0; }
+};
+
+const std::vector<std::string>& unusual_checks() {
+  static const std::vector<std::string> checks = {"density", "sound_speed", "shear_modulus", "yield_stress",
+                                                  "fracture_strain", "velocity", "angle"};
+  return checks;
+}
+
+std::string allow_hint(const std::string& check) {
+  return fmt::format("; if this is deliberate, add \"{}\" to the top-level \"allow_unusual\" list", check);
+}
+
+Allowances read_allowances(JsonObject& top) {
+  Allowances a;
+  const Json* list = top.optional_raw("allow_unusual");
+  if (!list) {
+    top.resolve("allow_unusual", Json::array());
+    return a;
+  }
+  const std::string expected = fmt::format("an array of check names ({})", fmt::join(unusual_checks(), ", "));
+  if (!list->is_array()) top.fail("allow_unusual", expected);
+  for (const Json& item : *list) {
+    if (!item.is_string() || std::find(unusual_checks().begin(), unusual_checks().end(), item.get<std::string>()) ==
+                                 unusual_checks().end()) {
+      top.fail("allow_unusual", expected);
+    }
+    a.allowed.insert(item.get<std::string>());
+  }
+  top.resolve("allow_unusual", *list);
+  return a;
+}
+
 Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits,
-                       fracture::ErosionLimits& erosion) {
+                       fracture::ErosionLimits& erosion, const Allowances& allow) {
   Material m;
   m.name = name;
   m.reference_density = spec.number("density", Range::positive());
@@ -106,6 +145,33 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
                                                  bulk_modulus, poisson));
     }
   }
+  // A solid (an eos with a bulk modulus, or a strength model): the ranges of real solids, from foams
+  // and polymers to tungsten (gases are often non-dimensional, and are not checked).
+  const bool solid = bulk_modulus > 0.0 || shear_modulus > 0.0;
+  if (solid && !allow.allows("density") && !(m.reference_density >= 100.0 && m.reference_density <= 25'000.0)) {
+    throw InputError(fmt::format("{}: {:g} kg/m^3 is outside the 100 to 25 000 kg/m^3 of solids (g/cm^3 for kg/m^3?){}",
+                                 spec.path_of("density"), m.reference_density, allow_hint("density")));
+  }
+  if (solid && bulk_modulus > 0.0 && !allow.allows("sound_speed")) {
+    const double c = std::sqrt((bulk_modulus + 4.0 / 3.0 * shear_modulus) / m.reference_density);
+    if (!(c >= 100.0 && c <= 20'000.0)) {
+      throw InputError(fmt::format("{}: the longitudinal sound speed sqrt((K + 4/3 mu) / rho) = {:.4g} m/s is outside "
+                                   "the 100 to 20 000 m/s of solids (moduli in GPa for Pa?){}",
+                                   eos.path(), c, allow_hint("sound_speed")));
+    }
+  }
+  if (shear_modulus > 0.0 && std::isfinite(shear_modulus) && bulk_modulus > 0.0 && !allow.allows("shear_modulus") &&
+      shear_modulus < 1e-5 * bulk_modulus) {
+    throw InputError(fmt::format("{}: {:.4g} Pa is less than 1e-5 of the bulk modulus {:.4g} Pa (GPa for Pa?){}",
+                                 strength.path_of("shear_modulus"), shear_modulus, bulk_modulus, allow_hint("shear_modulus")));
+  }
+  const double yield = std::visit([](const auto& model) { return model.flow_stress(0.0); }, m.strength);
+  if (shear_modulus > 0.0 && std::isfinite(yield) && yield > 0.0 && !allow.allows("yield_stress") &&
+      !(yield >= 1e-6 * shear_modulus && yield <= 0.2 * shear_modulus)) {
+    throw InputError(fmt::format("{}: an initial yield stress of {:.4g} Pa is {:.3g} of the shear modulus; solids lie "
+                                 "between 1e-6 and 0.2 (Pa for MPa?){}",
+                                 strength.path(), yield, yield / shear_modulus, allow_hint("yield_stress")));
+  }
   strength.finish();
   if (auto f = spec.optional_object("fracture")) {
     // Criteria (1) of the paper: each enabled only when its limit is given.
@@ -118,6 +184,15 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
     limits.shear_strain = limit("shear_strain");
     limits.internal_energy = limit("internal_energy");
     limits.loosening = f->number("loosening", limits.loosening, Range{0.0, 1.0, true});
+    if (!allow.allows("fracture_strain")) {
+      for (const auto& [key, value] : {std::pair{"elongation", limits.elongation}, std::pair{"shear_strain", limits.shear_strain}}) {
+        if (value != fracture::disabled && value > 10.0) {
+          throw InputError(fmt::format("{}: a strain of {:g} is more than 10 (1000 %); strains are fractions, not "
+                                       "percent{}",
+                                       f->path_of(key), value, allow_hint("fracture_strain")));
+        }
+      }
+    }
     f->finish();
     if (!limits.any()) {
       f->fail_here("expected at least one limit: elongation, tensile_stress, compressive_stress, shear_strain or internal_energy");
@@ -405,6 +480,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   scenario.title = top.text("title", "");
   top.text("description", "");
+  const Allowances allow = read_allowances(top);
   const std::string geometry_name = top.choice("geometry", {"planar", "axisymmetric"});
   const GeometryKind geometry = geometry_name == "planar" ? GeometryKind::planar : GeometryKind::axisymmetric;
   setup::SceneDescription& scene = scenario.scene;
@@ -420,7 +496,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
       material_index[name] = static_cast<Index>(scene.materials.size());
       fracture::FractureLimits limits;
       fracture::ErosionLimits erosion;
-      scene.materials.push_back(read_material(name, materials.object(name), limits, erosion));
+      scene.materials.push_back(read_material(name, materials.object(name), limits, erosion, allow));
       scene.fracture.push_back(limits);
       material_erosion.push_back(erosion);
     }
@@ -460,7 +536,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
     description.material = body.material;
     description.erosion = body.erosion();
     description.where = spec.path();
-    description.mesh = read_mesh(spec.object("mesh"), geometry);
+    description.mesh = read_mesh(spec.object("mesh"), geometry, allow.allows("angle"));
     if (auto initial = spec.optional_object("initial")) description.initial = read_initial(*initial, geometry);
     if (auto boundary = spec.optional_object("boundary")) {
       description.boundary = read_boundary(*boundary, description.mesh, geometry);
@@ -488,6 +564,21 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   top.finish();
   scenario.resolved_json = resolved.dump(2);
   scenario.setup = setup::build_simulation(scenario.scene);
+  if (!allow.allows("velocity")) {
+    // Speeds of impact problems reach tens of km/s (meteoroids); 1e5 m/s is a slip (km/s for m/s).
+    const Mesh& mesh = scenario.setup.mesh;
+    for (const Body& body : scenario.setup.bodies) {
+      for (Index n = body.node_begin; n < body.node_end; ++n) {
+        const double speed = std::hypot(mesh.nodes.u[n], mesh.nodes.v[n]);
+        if (speed > 1e5) {
+          throw InputError(fmt::format("{}: body \"{}\" starts at {:.4g} m/s at ({:.4g}, {:.4g}), faster than 1e5 m/s "
+                                       "(km/s for m/s?){}",
+                                       scenario.scene.bodies[static_cast<std::size_t>(&body - scenario.setup.bodies.data())].where,
+                                       body.name, speed, mesh.nodes.x[n], mesh.nodes.y[n], allow_hint("velocity")));
+        }
+      }
+    }
+  }
   return scenario;
 }
 

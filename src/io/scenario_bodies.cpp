@@ -58,7 +58,7 @@ std::vector<ScalarField> read_field_pair(JsonObject& spec, std::string_view key,
 
 }  // namespace
 
-setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry) {
+setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry, bool allow_radian_angles) {
   const AxisNames names = axis_names(geometry);
   const std::string type = spec.choice("type", {"rectangle", "sector", "nosed_cylinder"});
   setup::MeshDescription result;
@@ -109,6 +109,17 @@ setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry) {
     sector.angles = read_axis(spec.object("angle"), std::numbers::pi / 180.0);
     if (sector.radii.front() < 0.0) spec.fail_here("radius.from must be >= 0");
     const double from = sector.angles.front() * 180.0 / std::numbers::pi, to = sector.angles.back() * 180.0 / std::numbers::pi;
+    for (const double degrees : {from, to}) {
+      // pi/2, pi, 3 pi/2 or 2 pi written where degrees are expected: almost surely radians.
+      const double quarters = degrees / (0.5 * std::numbers::pi);
+      const bool looks_like_radians = degrees != 0.0 && std::abs(quarters - std::round(quarters)) < 1e-4 &&
+                                      std::abs(quarters) <= 4.0 + 1e-9;
+      if (looks_like_radians && !allow_radian_angles) {
+        throw InputError(fmt::format("{}: {:g} looks like an angle in radians; angles are in degrees (90, 180, 360); if "
+                                     "this is deliberate, add \"angle\" to the top-level \"allow_unusual\" list",
+                                     spec.path_of("angle"), degrees));
+      }
+    }
     if (from < -360.0 || to > 360.0 || to - from > 360.0 * (1.0 + 1e-12)) {
       throw InputError(fmt::format("{}: the angles run from {:g} to {:g} degrees; expected a span of at most 360 degrees "
                                    "within [-360, 360] (angles are in degrees)",

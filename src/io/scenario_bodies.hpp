@@ -21,7 +21,8 @@ inline AxisNames axis_names(GeometryKind g) {
   return {std::string(axis_name(g, 0)), std::string(axis_name(g, 1))};
 }
 
-setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry);
+// allow_radian_angles: the scenario allows sector angles that look like radians ("allow_unusual").
+setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry, bool allow_radian_angles);
 std::vector<setup::SideBoundary> read_boundary(JsonObject spec, const setup::MeshDescription& mesh, GeometryKind geometry);
 setup::InitialState read_initial(JsonObject spec, GeometryKind geometry);
 

@@ -254,6 +254,8 @@ TEST_CASE("wrong input that used to pass: angles, expressions, the other geometr
     CHECK_THAT(error_of(sector("{ \"from\": 0, \"to\": 720, \"zones\": 4 }")),
                Catch::StartsWith("bodies[0].mesh.angle: the angles run from 0 to 720 degrees"));
     CHECK_THAT(error_of(sector("{ \"from\": -400, \"to\": 0, \"zones\": 4 }")), Catch::Contains("within [-360, 360]"));
+    CHECK_THAT(error_of(sector("{ \"from\": 0, \"to\": 3.14159, \"zones\": 4 }")),
+               Catch::Contains("3.14159 looks like an angle in radians"));
   }
   SECTION("expressions: only one formula, no assignment, bounded nesting") {
     auto density = [&](const std::string& expression) {
@@ -274,5 +276,42 @@ TEST_CASE("wrong input that used to pass: angles, expressions, the other geometr
                                             "\"z\": { \"from\": 0, \"to\": 1, \"zones\": 4 }"));
     CHECK(e == "bodies[0].mesh.z: a planar rectangle names its axes \"x\" and \"y\"; found \"z\" (an axis of "
                "axisymmetric geometry)");
+  }
+}
+
+TEST_CASE("unit slips that stay consistent are caught by plausibility checks, and allowed by name", "[scenario][robustness]") {
+  // two_blocks(0.01): elastic aluminium, rho 2700 kg/m^3, K 7.3e10 Pa, mu 2.6e10 Pa (its definition above).
+  const std::string base = two_blocks(0.01);
+  SECTION("density in g/cm^3") {
+    const std::string e = error_of(replaced(base, "\"density\": 2700", "\"density\": 2.7"));
+    CHECK_THAT(e, Catch::StartsWith("materials.al.density: 2.7 kg/m^3 is outside"));
+    CHECK_THAT(e, Catch::Contains("add \"density\" to the top-level \"allow_unusual\" list"));
+    // Allowed by name (the sound speed is then out of range too, and is allowed as well).
+    CHECK(error_of(replaced(replaced(base, "\"density\": 2700", "\"density\": 2.7"), "\"end_time\"",
+                            "\"allow_unusual\": [\"density\", \"sound_speed\"], \"end_time\"")) == "(no error)");
+  }
+  SECTION("both moduli in GPa: the sound speed") {
+    const std::string e = error_of(replaced(replaced(base, "7.3e10", "73"), "2.6e10", "26"));
+    CHECK_THAT(e, Catch::Contains("longitudinal sound speed"));
+    CHECK_THAT(e, Catch::Contains("\"sound_speed\""));
+  }
+  SECTION("the shear modulus alone in GPa") {
+    CHECK_THAT(error_of(replaced(base, "2.6e10", "26")), Catch::Contains("less than 1e-5 of the bulk modulus"));
+  }
+  SECTION("a yield stress in Pa for MPa") {
+    const std::string plastic = replaced(base, "{ \"model\": \"elastic\", \"shear_modulus\": 2.6e10 }",
+                                         "{ \"model\": \"perfectly_plastic\", \"shear_modulus\": 2.6e10, \"yield_stress\": 3e8 }");
+    CHECK(error_of(plastic) == "(no error)");
+    CHECK_THAT(error_of(replaced(plastic, "3e8", "300")), Catch::Contains("of the shear modulus; solids lie between 1e-6 and 0.2"));
+  }
+  SECTION("a speed in km/s for m/s") {
+    const std::string moving = "{ \"name\": \"left\", \"material\": \"al\", \"initial\": { \"velocity\": [800000, 0] },";
+    const std::string e = error_of(replaced(base, "{ \"name\": \"left\", \"material\": \"al\",", moving));
+    CHECK_THAT(e, Catch::StartsWith("bodies[0]: body \"left\" starts at 8e+05 m/s"));
+    CHECK_THAT(e, Catch::Contains("faster than 1e5 m/s"));
+  }
+  SECTION("an unknown check name") {
+    CHECK_THAT(error_of(replaced(base, "\"end_time\"", "\"allow_unusual\": [\"everything\"], \"end_time\"")),
+               Catch::StartsWith("allow_unusual: expected an array of check names"));
   }
 }
