@@ -212,8 +212,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   if (!in) throw InputError(fmt::format("{}: cannot open the checkpoint", file.string()));
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
-  const std::string name = file.string();
+  return parse_checkpoint(buffer.str(), file.string());
+}
+
+Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   constexpr std::size_t trailer = sizeof(std::uint64_t) + sizeof end_magic;
   if (bytes.size() < sizeof magic + trailer) Reader(bytes, bytes.size(), name).corrupt("the file is too short");
   const std::size_t body_end = bytes.size() - trailer;

@@ -203,7 +203,7 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
   return m;
 }
 
-Controls read_controls(JsonObject controls, double end_time) {
+Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
   Controls c;
   c.end_time = end_time;
   JsonObject* spec = &controls;
@@ -214,6 +214,7 @@ Controls read_controls(JsonObject controls, double end_time) {
   c.max_volume_change = spec->number("max_volume_change", c.max_volume_change, Range{0.0, 1.0, true});
   c.time_step_floor = spec->number("time_step_floor", 0.0, Range::non_negative());
   c.max_cycles = spec->integer("max_cycles", c.max_cycles, 1, 2'000'000'000);
+  max_zones = spec->integer("max_zones", setup::max_zones, 1, 2'000'000'000);
   c.threads = static_cast<int>(spec->integer("threads", c.threads, 1, 256));
   {
     JsonObject viscosity = spec->object_or_empty("viscosity");
@@ -469,7 +470,7 @@ const std::vector<std::string>& picture_fields() {
   return fields;
 }
 
-Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
+Scenario parse_scenario(const std::string& json_text, const std::string& origin, const ReadLimits& read_limits) {
   const Json document = parse_document<Json>(json_text, origin);
   Scenario scenario;
   Json resolved = Json::object();
@@ -551,7 +552,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   for (const Body& body : named_bodies) fracturing.push_back(scene.fracture[static_cast<std::size_t>(body.material)].any());
   scene.contact = read_contact(top.object_or_empty("contact"), named_bodies, geometry, fracturing);
 
-  scene.controls = read_controls(top.object_or_empty("controls"), end_time);
+  scene.controls = read_controls(top.object_or_empty("controls"), end_time, scene.max_zones);
+  if (read_limits.max_zones > 0) scene.max_zones = std::min(scene.max_zones, read_limits.max_zones);
   scenario.output = read_output(top.object_or_empty("output"), end_time, geometry);
   if (auto penetration = top.optional_object("penetration")) {
     scenario.penetration = read_penetration(*penetration, named_bodies);

@@ -36,13 +36,22 @@ SideDirection side_direction(const Mesh& mesh, const std::vector<Index>& nodes) 
   throw InputError(fmt::format("{}: {}", where, message));
 }
 
-void check_zone_count(long zones, const std::string& where, const char* qualifier = "") {
-  if (zones > max_zones) fail(where, fmt::format("{}{} zones is more than the {} this machine can hold", qualifier, zones, max_zones));
+// `zones` more in a scene that has `before` already, against the scene's limit.
+void check_zone_count(long zones, long before, long limit, const std::string& where, const char* qualifier = "") {
+  if (zones + before > limit) {
+    fail(where, fmt::format("{}{} zones ({} in the scene with the bodies before it, about {:.2g} GB of state) is more "
+                            "than the {} allowed",
+                            qualifier, zones, zones + before, static_cast<double>(zones + before) * bytes_per_zone / 1e9,
+                            limit));
+  }
 }
 
-generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, const std::string& where) {
+generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, long zone_limit,
+                              const std::string& where) {
+  const long before = mesh.zones.size();
   if (const auto* rectangle = std::get_if<RectangleMesh>(&description.shape)) {
-    check_zone_count(static_cast<long>(rectangle->first.size() - 1) * static_cast<long>(rectangle->second.size() - 1), where);
+    check_zone_count(static_cast<long>(rectangle->first.size() - 1) * static_cast<long>(rectangle->second.size() - 1),
+                     before, zone_limit, where);
     return generate::rectangle(mesh, rectangle->first, rectangle->second, body, description.map);
   }
   if (const auto* sector = std::get_if<SectorMesh>(&description.shape)) {
@@ -50,13 +59,14 @@ generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, In
     if (sector->angles.back() - sector->angles.front() > 2.0 * std::numbers::pi * (1.0 + 1e-12)) {
       fail(where, fmt::format("the sector spans {:g} radians; at most 2 pi", sector->angles.back() - sector->angles.front()));
     }
-    check_zone_count(static_cast<long>(sector->radii.size() - 1) * static_cast<long>(sector->angles.size() - 1), where);
+    check_zone_count(static_cast<long>(sector->radii.size() - 1) * static_cast<long>(sector->angles.size() - 1), before,
+                     zone_limit, where);
     return generate::sector(mesh, sector->radii, sector->angles, body, description.map);
   }
   const generate::NosedCylinderParams& p = std::get<NosedCylinderMesh>(description.shape).params;
   // An upper bound of the generator's zone count: every column of the O-grid and shank.
   const long across = static_cast<long>(p.radial_zones) + p.core_zones + p.nose_zones;
-  check_zone_count(across * (across + p.shank_zones), where, "up to ");
+  check_zone_count(across * (across + p.shank_zones), before, zone_limit, where, "up to ");
   try {
     return generate::nosed_cylinder(mesh, p, body);
   } catch (const InputError& e) {
@@ -202,7 +212,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     body.material = description.material;
     body.set_erosion(description.erosion);
     const generate::Patch patch =
-        generate_mesh(description.mesh, setup.mesh, static_cast<Index>(i), where.back() + ".mesh");
+        generate_mesh(description.mesh, setup.mesh, static_cast<Index>(i), scene.max_zones, where.back() + ".mesh");
     body.node_begin = patch.node_begin;
     body.node_end = patch.node_end;
     body.zone_begin = patch.zone_begin;

@@ -176,7 +176,10 @@ TEST_CASE("setup errors name the body: overlap, side, density, zones, material",
     setup::SceneDescription scene = good;
     scene.bodies[0].mesh.shape = setup::RectangleMesh{generate::graded_axis(-1.0, {{0.0, 100000, 1.0}}),
                                                       generate::graded_axis(0.0, {{0.5, 1000, 1.0}})};
-    CHECK(error_of(scene).rfind("bodies[0].mesh: 100000000 zones is more than", 0) == 0);
+    CHECK(error_of(scene).rfind("bodies[0].mesh: 100000000 zones (100000000 in the scene with the bodies before it, about 50 GB", 0) == 0);
+    scene.max_zones = 30;  // a lower limit: the first body (18 zones) fits, the second (15) does not
+    scene.bodies[0] = good.bodies[0];
+    CHECK(error_of(scene).rfind("bodies[1].mesh: 15 zones (33 in the scene with the bodies before it", 0) == 0);
   }
   SECTION("a material index outside the scene's materials") {
     setup::SceneDescription scene = good;

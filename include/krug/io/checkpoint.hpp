@@ -78,5 +78,7 @@ std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 0xcbf29ce4842
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state, const RunProgress& progress,
                       std::uint64_t scenario_hash);
 Checkpoint read_checkpoint(const std::filesystem::path& file);
+// The same from the file's bytes; `name` labels the errors.
+Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name);
 
 }  // namespace krug::io

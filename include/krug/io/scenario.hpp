@@ -70,6 +70,11 @@ struct Scenario {
 };
 
 Scenario load_scenario(const std::filesystem::path& file);
-Scenario parse_scenario(const std::string& json_text, const std::string& origin);
+// Limits a program reading scenarios sets over the scenarios' own (a service or a fuzzer).
+struct ReadLimits {
+  long max_zones = 0;  // > 0: at most this many zones, whatever the scenario's controls.max_zones says
+};
+
+Scenario parse_scenario(const std::string& json_text, const std::string& origin, const ReadLimits& limits = {});
 
 }  // namespace krug::io

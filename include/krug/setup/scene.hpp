@@ -20,8 +20,10 @@
 
 namespace krug::setup {
 
-// Zones a scene may ask for: about 10 GB of state; beyond this the machine runs out.
+// Zones a scene may ask for by default: about 10 GB of state at about 500 bytes a zone (node and
+// zone fields); SceneDescription::max_zones sets another limit.
 inline constexpr long max_zones = 20'000'000;
+inline constexpr double bytes_per_zone = 500.0;
 // Node coordinates a scene may have (m): an impact problem is metres across, not kilometres; a
 // coordinate beyond this is a unit slip or a typing error (1e300).
 inline constexpr double max_coordinate = 1e4;
@@ -101,6 +103,7 @@ struct SceneDescription {
   std::vector<BodyDescription> bodies;
   contact::ContactSetup contact;
   Controls controls;
+  long max_zones = setup::max_zones;  // a body asking for more zones is refused before it is built
 };
 
 // Generates every body's mesh in order, sets its initial fields and constraints, and checks what a
