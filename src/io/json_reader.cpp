@@ -158,11 +158,15 @@ std::string read_text_file(const std::filesystem::path& file, std::string_view w
   return buffer.str();
 }
 
-template <class Document>
-Document parse_document(const std::string& text, const std::string& origin) {
+void check_document_shape(const std::string& text, const std::string& origin) {
   ShapeCheck check;
   (void)Json::sax_parse(text, &check);
   if (!check.problem.empty()) throw InputError(fmt::format("{}: {}", origin, check.problem));
+}
+
+template <class Document>
+Document parse_document(const std::string& text, const std::string& origin) {
+  check_document_shape(text, origin);
   try {
     return Document::parse(text);
   } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers too large for a double (1e400)

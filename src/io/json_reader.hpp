@@ -52,6 +52,8 @@ std::string read_text_file(const std::filesystem::path& file, std::string_view w
 // JSON path. Works for both nlohmann::json and nlohmann::ordered_json.
 template <class Document>
 Document parse_document(const std::string& text, const std::string& origin);
+// The shape check of parse_document alone (text that is not JSON passes: the parser reports it).
+void check_document_shape(const std::string& text, const std::string& origin);
 
 class JsonObject {
  public:

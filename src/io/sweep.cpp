@@ -92,6 +92,7 @@ void set_path(OrderedJson& document, const SweepParameter& parameter, const Orde
 
 // The value as JSON if it is JSON, else as a string (material names, models).
 OrderedJson value_of(const std::string& text) {
+  check_document_shape(text, "krug sweep: a --set value");
   try {
     return OrderedJson::parse(text);
   } catch (const nlohmann::json::exception&) {
