@@ -358,12 +358,12 @@ void RunRecorder::write_history_row(const Simulation& simulation) {
 
 void RunRecorder::write_snapshot(const Simulation& simulation) {
   const std::string name = fmt::format("snapshots/state_{:05d}.vtu", snapshots_.size());
-  write_vtu(simulation, directory_ / name);
+  write_vtu(simulation, directory_ / name, settings_.vtk_format);
   if (settings_.pictures.every_snapshot) picture(simulation, fmt::format("state_{:05d}", snapshots_.size()));
   snapshots_.emplace_back(simulation.time(), name);
   if (simulation.fracture_enabled()) {
     const std::string particles = fmt::format("snapshots/particles_{:05d}.vtp", particle_snapshots_.size());
-    write_vtp(simulation, directory_ / particles);
+    write_vtp(simulation, directory_ / particles, settings_.vtk_format);
     particle_snapshots_.emplace_back(simulation.time(), particles);
   }
 }
@@ -412,8 +412,8 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   if (snapshots_.empty() || snapshots_.back().first < simulation.time()) write_snapshot(simulation);
   write_history_row(simulation);
   history_.flush();
-  write_vtu(simulation, directory_ / "final.vtu");
-  if (simulation.fracture_enabled()) write_vtp(simulation, directory_ / "final_particles.vtp");
+  write_vtu(simulation, directory_ / "final.vtu", settings_.vtk_format);
+  if (simulation.fracture_enabled()) write_vtp(simulation, directory_ / "final_particles.vtp", settings_.vtk_format);
   std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   for (const auto& [time, file] : snapshots_) {
     pvd += fmt::format("    <DataSet timestep=\"{:.9e}\" part=\"0\" file=\"{}\"/>\n", time, file);

@@ -369,6 +369,7 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
   check_count("history_interval", o.history_interval, 1e8, "rows; 0 writes every cycle");
   check_count("snapshot_interval", o.snapshot_interval, 1e5, "snapshots");
   check_count("checkpoint_interval", o.checkpoint_interval, 1e4, "checkpoints");
+  o.vtk_format = output.choice("vtk_format", {"binary", "ascii"}, "binary") == "ascii" ? VtkEncoding::ascii : VtkEncoding::binary;
   o.plots = output.flag("plots", true);
   {
     JsonObject pictures = output.object_or_empty("pictures");

@@ -4,8 +4,10 @@ them. Runs the krug app on a small fracture scenario, then checks:
   * final.vtu and every snapshots/state_*.vtu read by meshio: one quad cell per active zone
     (summary.json bodies.*.zones), the cell fields and point fields Krug documents, finite values,
     densities within the materials' range, body ids of the right bodies;
-  * final_particles.vtp (VTK PolyData, which meshio does not read: parsed as XML): one point per
-    particle of summary.json particles.count, their mass summing to particles.mass;
+  * the von Mises stress written equals sqrt(3/2 s:s) of the deviator written (independent formula);
+  * final_particles.vtp (VTK PolyData, which meshio does not read: decoded here, compressed binary or
+    text): one point per particle of summary.json particles.count, their mass summing to particles.mass;
+  * the same run with output.vtk_format "ascii" gives the same values, array by array;
   * run.pvd (a ParaView collection, plain XML): increasing times ending at summary.json time,
     every listed file present and readable.
 Exit code 77 (skipped) when meshio is missing.
@@ -16,7 +18,9 @@ import math
 import os
 import subprocess
 import sys
+import struct
 import xml.etree.ElementTree as ET
+import zlib
 
 try:
     import meshio
@@ -24,9 +28,11 @@ except ImportError:
     print("read_back.py: meshio is not available (install python3-meshio); skipped")
     sys.exit(77)
 
-CELL_FIELDS = ["body", "density", "pressure", "specific_internal_energy", "sound_speed",
-               "deviatoric_stress_xx_yy_xy_zz", "equivalent_plastic_strain", "damaged",
-               "damage_onset_time", "damage_criterion"]
+CELL_FIELDS = ["body", "density", "pressure", "specific_internal_energy", "sound_speed", "von_mises_stress",
+               "equivalent_plastic_strain", "damaged", "damage_onset_time", "damage_criterion", "stable_time_step"]
+DEVIATOR = {"planar": ["deviatoric_stress_xx", "deviatoric_stress_yy", "deviatoric_stress_xy", "deviatoric_stress_zz"],
+            "axisymmetric": ["deviatoric_stress_zz", "deviatoric_stress_rr", "deviatoric_stress_zr",
+                             "deviatoric_stress_tt"]}
 POINT_FIELDS = ["velocity", "body"]
 failures = []
 
@@ -37,14 +43,17 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def read_vtu(path, zones=None, bodies=None):
+def read_vtu(path, zones=None, bodies=None, geometry=None):
     mesh = meshio.read(path)
     quads = sum(len(block.data) for block in mesh.cells if block.type == "quad")
     others = [block.type for block in mesh.cells if block.type != "quad"]
     check(not others, f"{path}: only quad cells expected, found {others}")
     if zones is not None:
         check(quads == zones, f"{path}: {quads} cells, summary.json says {zones} active zones")
-    for name in CELL_FIELDS:
+    deviator = DEVIATOR["axisymmetric" if "deviatoric_stress_rr" in mesh.cell_data else "planar"]
+    if geometry is not None:
+        deviator = DEVIATOR[geometry]
+    for name in CELL_FIELDS + deviator:
         check(name in mesh.cell_data, f"{path}: cell field {name} missing")
     for name in POINT_FIELDS:
         check(name in mesh.point_data, f"{path}: point field {name} missing")
@@ -53,20 +62,55 @@ def read_vtu(path, zones=None, bodies=None):
     check(all(math.isfinite(v) for v in velocity.flatten()), f"{path}: non-finite velocity")
     density = [d for block in mesh.cell_data["density"] for d in block]
     check(all(d > 0 and math.isfinite(d) for d in density), f"{path}: a density not positive and finite")
-    stress = mesh.cell_data["deviatoric_stress_xx_yy_xy_zz"][0]
-    check(stress.shape[1] == 4, f"{path}: the deviator has {stress.shape[1]} components")
+    s = [mesh.cell_data[name][0] for name in deviator]
+    vm = mesh.cell_data["von_mises_stress"][0]
+    for i in range(len(vm)):
+        expected = math.sqrt(1.5 * (s[0][i] ** 2 + s[1][i] ** 2 + s[3][i] ** 2 + 2 * s[2][i] ** 2))
+        check(abs(vm[i] - expected) <= 1e-12 * max(expected, 1.0), f"{path}: von Mises {vm[i]} vs {expected}")
     if bodies is not None:
         ids = sorted({int(b) for block in mesh.cell_data["body"] for b in block})
         check(all(0 <= i < bodies for i in ids), f"{path}: body ids {ids} outside 0..{bodies - 1}")
     return mesh
 
 
+TYPES = {"Float64": "d", "Int32": "i", "UInt8": "B", "Int64": "q"}
+
+
+def vtk_arrays(path):
+    """Every DataArray of a VTK XML file, text or appended zlib-compressed binary (UInt64 headers)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    split = data.find(b"<AppendedData")
+    head = data if split < 0 else data[:split] + b"</VTKFile>"
+    root = ET.fromstring(head)
+    appended = b""
+    if split >= 0:
+        start = data.index(b"_", data.index(b">", split)) + 1
+        appended = data[start:]
+    arrays = {}
+    for a in root.iter("DataArray"):
+        name, code = a.get("Name"), TYPES[a.get("type")]
+        if a.get("format") == "ascii":
+            values = [float(x) for x in (a.text or "").split()]
+        else:
+            check(root.get("compressor") == "vtkZLibDataCompressor", f"{path}: appended data without zlib")
+            at = int(a.get("offset"))
+            blocks = struct.unpack_from("<Q", appended, at)[0]
+            header = struct.unpack_from(f"<{3 + blocks}Q", appended, at)
+            at += 8 * (3 + blocks)
+            raw = b""
+            for size in header[3:]:
+                raw += zlib.decompress(appended[at:at + size])
+                at += size
+            values = list(struct.unpack(f"<{len(raw) // struct.calcsize(code)}{code}", raw))
+        arrays[name] = values
+    return root, arrays
+
+
 def read_vtp(path):
-    root = ET.parse(path).getroot()
+    root, arrays = vtk_arrays(path)
     check(root.get("type") == "PolyData", f"{path}: not VTK PolyData")
-    piece = root.find("PolyData/Piece")
-    count = int(piece.get("NumberOfPoints"))
-    arrays = {a.get("Name"): [float(x) for x in (a.text or "").split()] for a in piece.iter("DataArray")}
+    count = int(root.find("PolyData/Piece").get("NumberOfPoints"))
     check(len(arrays["coordinates"]) == 3 * count, f"{path}: {len(arrays['coordinates'])} coordinates for {count} points")
     for name in ("velocity", "radius", "mass", "body", "birth_time"):
         check(name in arrays, f"{path}: particle field {name} missing")
@@ -117,6 +161,29 @@ def main():
     for _, name in particles:
         read_vtp(os.path.join(args.work, name))
     print(f"run.pvd: {len(meshes)} mesh and {len(particles)} particle snapshots, t = {times[0]} .. {times[-1]}")
+    # The same run written as text: every array of final.vtu and final_particles.vtp equal, value by value
+    # (the text holds 10 significant digits).
+    with open(args.scenario) as f:
+        document = json.load(f)
+    document.setdefault("output", {})["vtk_format"] = "ascii"
+    ascii_dir = args.work.rstrip("/") + "_ascii"
+    os.makedirs(ascii_dir, exist_ok=True)
+    ascii_scenario = os.path.join(ascii_dir, "scenario.json")
+    with open(ascii_scenario, "w") as f:
+        json.dump(document, f)
+    run = subprocess.run([args.krug, "run", ascii_scenario, "--out", ascii_dir, "--quiet", "--no-plots",
+                          "--no-pictures"], capture_output=True, text=True)
+    check(run.returncode == 0, f"krug run (ascii) exited with {run.returncode}: {run.stderr}")
+    for name in ("final.vtu", "final_particles.vtp"):
+        _, binary = vtk_arrays(os.path.join(args.work, name))
+        _, text = vtk_arrays(os.path.join(ascii_dir, name))
+        check(sorted(binary) == sorted(text), f"{name}: binary and text files name different arrays")
+        for key in binary:
+            same = len(binary[key]) == len(text[key]) and all(
+                abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300) for a, b in zip(binary[key], text[key]))
+            check(same, f"{name}: array {key} differs between the binary and the text file")
+    sizes = [os.path.getsize(os.path.join(d, "final.vtu")) for d in (args.work, ascii_dir)]
+    print(f"final.vtu: {sizes[0]} bytes binary, {sizes[1]} bytes text; the same values")
     if failures:
         print(f"{len(failures)} checks failed")
         return 1

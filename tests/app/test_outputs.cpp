@@ -5,9 +5,11 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "krug/core/error.hpp"
 #include "krug/io/outputs.hpp"
+#include "krug/io/scenario.hpp"
 #include "krug/run/run.hpp"
 #include "test_support.hpp"
 
@@ -58,5 +60,73 @@ TEST_CASE("completed and failed runs leave no partial files behind", "[app][outp
     CHECK(krug::test::read_json(dir / "summary.json")["status"] == (fail ? "failed" : "completed"));
     CHECK_THAT(krug::test::read_text(dir / "final.vtu"), Catch::EndsWith("</VTKFile>\n"));
     CHECK_THAT(krug::test::read_text(dir / "run.pvd"), Catch::EndsWith("</VTKFile>\n"));
+  }
+}
+
+namespace {
+
+// The names of the DataArrays inside `section` (CellData, PointData) of a VTK XML file.
+std::vector<std::string> array_names(const std::string& text, const std::string& section) {
+  std::vector<std::string> names;
+  const auto begin = text.find("<" + section);
+  const auto end = text.find("</" + section + ">");
+  if (begin == std::string::npos || end == std::string::npos) return names;
+  for (auto at = text.find("Name=\"", begin); at != std::string::npos && at < end; at = text.find("Name=\"", at + 1)) {
+    const auto close = text.find('"', at + 6);
+    names.push_back(text.substr(at + 6, close - at - 6));
+  }
+  return names;
+}
+
+// The field names of docs/outputs.md's table between <!-- MARK --> and <!-- /MARK -->: the back-quoted
+// names of the first column, `_yy`-style suffixes completed from the name before them, for rows whose
+// note names `geometry` or no geometry.
+std::vector<std::string> documented_fields(const std::string& mark, const std::string& geometry) {
+  const std::string doc = krug::test::read_text(fs::path(KRUG_SCHEMA_FILE).parent_path() / "outputs.md");
+  const auto begin = doc.find("<!-- " + mark + " -->");
+  const auto end = doc.find("<!-- /" + mark + " -->");
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end != std::string::npos);
+  std::vector<std::string> names;
+  std::size_t line_start = doc.find('\n', begin) + 1;
+  while (line_start < end) {
+    const std::size_t line_end = doc.find('\n', line_start);
+    const std::string line = doc.substr(line_start, line_end - line_start);
+    line_start = line_end + 1;
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string first = line.substr(2, line.find(" | ", 2) - 2);
+    const bool planar_row = first.find("(planar)") != std::string::npos;
+    const bool axisymmetric_row = first.find("(axisymmetric)") != std::string::npos;
+    if ((planar_row && geometry != "planar") || (axisymmetric_row && geometry != "axisymmetric")) continue;
+    std::string stem;
+    for (auto at = first.find('`'); at != std::string::npos; at = first.find('`', first.find('`', at + 1) + 1)) {
+      const std::string name = first.substr(at + 1, first.find('`', at + 1) - at - 1);
+      if (name[0] == '_') {
+        names.push_back(stem + name);
+      } else {
+        names.push_back(name);
+        stem = name.substr(0, name.rfind('_'));
+      }
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("docs/outputs.md lists exactly the VTK fields written, for both geometries", "[app][outputs]") {
+  const fs::path dir = krug::test::scratch("vtk_fields");
+  for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
+    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    const krug::Simulation simulation(scenario.setup);
+    const std::string geometry = scenario.setup.geometry == krug::GeometryKind::planar ? "planar" : "axisymmetric";
+    INFO(example << " (" << geometry << ")");
+    krug::io::write_vtu(simulation, dir / "state.vtu");
+    krug::io::write_vtp(simulation, dir / "particles.vtp");
+    const std::string vtu = krug::test::read_text(dir / "state.vtu");
+    const std::string vtp = krug::test::read_text(dir / "particles.vtp");
+    CHECK(array_names(vtu, "CellData") == documented_fields("vtu-cell-fields", geometry));
+    CHECK(array_names(vtu, "PointData") == std::vector<std::string>{"velocity", "body"});
+    CHECK(array_names(vtp, "PointData") == documented_fields("vtp-point-fields", geometry));
   }
 }

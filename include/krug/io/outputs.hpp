@@ -40,9 +40,12 @@ using PictureHook = std::function<void(const Simulation& simulation, const std::
                                        const std::string& name)>;
 
 void write_text_atomically(const std::filesystem::path& file, const std::string& text);
-void write_vtu(const Simulation& simulation, const std::filesystem::path& file);
-// Particles as VTK XML PolyData points (mass, radius, velocity, body of origin).
-void write_vtp(const Simulation& simulation, const std::filesystem::path& file);
+// The active zones as a VTK XML UnstructuredGrid (fields: docs/outputs.md).
+void write_vtu(const Simulation& simulation, const std::filesystem::path& file,
+               VtkEncoding encoding = VtkEncoding::binary);
+// Particles as VTK XML PolyData points (mass, radius, velocity, body of origin, birth time).
+void write_vtp(const Simulation& simulation, const std::filesystem::path& file,
+               VtkEncoding encoding = VtkEncoding::binary);
 std::string summary_json(const Simulation& simulation, const RunResult& result);
 // The penetration result in a few lines for the console (empty without a penetration block).
 std::vector<std::string> penetration_lines(const RunResult& result);

@@ -28,11 +28,15 @@ struct PictureSettings {
 // Names of the fields a picture can show.
 const std::vector<std::string>& picture_fields();
 
+// How VTK files store their arrays: compressed binary (zlib, appended) or text.
+enum class VtkEncoding { binary, ascii };
+
 struct OutputSettings {
   std::string directory;            // default: "out/<scenario file stem>"; `krug run --out` overrides
   double history_interval = 0.0;    // s between rows of history.csv (0: every cycle)
   double snapshot_interval = 0.0;   // s between VTK snapshots (0: initial and final state only)
   double checkpoint_interval = 0.0; // s between checkpoints (0: none, apart from an interruption)
+  VtkEncoding vtk_format = VtkEncoding::binary;
   PictureSettings pictures;
   bool plots = true;                // plots of history.csv (by the app, with Python and matplotlib)
 };
