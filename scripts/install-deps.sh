@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libfmt-dev nlohmann-json3-dev catch2 libbenchmark-dev   # library, tests, benchmarks
   libmuparser-dev                                                       # expressions in scenarios
+  zlib1g-dev                                                            # compressed binary VTK files
   libcairo2-dev                                                         # PNG pictures (app only)
   python3-numpy python3-matplotlib python3-meshio                      # plots, read-back tests
   clang libclang-rt-14-dev                                              # libFuzzer (scripts/fuzz.sh)
