@@ -122,21 +122,41 @@ int run(const Arguments& args) {
 
   double last_report = 0.0;
   const bool interactive = !args.quiet;
+  bool progress_shown = false;  // a progress line (ended by \r) is on the terminal
+  auto print_line = [&](const std::string& line) {
+    std::fprintf(stderr, "%skrug: %s\n", progress_shown && !args.verbose ? "\n" : "", line.c_str());
+    progress_shown = false;
+  };
+  if (interactive) {
+    options.on_start = [&](const krug::Simulation& s) {
+      for (const std::string& line : krug::run::start_up_lines(scenario, s)) print_line(line);
+    };
+    options.on_event = [&](const krug::run::RunEvent& event) {
+      print_line(fmt::format("t = {:.4e} s, cycle {}: {}", event.time, event.cycle, event.what));
+    };
+  }
   options.on_cycle = [&](const krug::Simulation& s, double elapsed) {
     if (interactive && (elapsed - last_report >= 1.0 || (args.verbose && elapsed - last_report >= 0.1))) {
       last_report = elapsed;
       const double fraction = s.time() / s.controls().end_time;
       const double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+      // dt with what set it: a zone (by body and zone), or the growth and other limits.
+      const std::string controller = s.time_step_limit() == krug::TimeStepLimit::zone
+                                         ? krug::run::describe_zone(s, s.controlling_zone())
+                                     : s.time_step_limit() == krug::TimeStepLimit::growth          ? "growth limit"
+                                     : s.time_step_limit() == krug::TimeStepLimit::particle_travel ? "particle travel"
+                                                                                                    : "step limit";
       if (scenario.stop) {
         // The stop rule ends the run when its answer is final: the end time is only a bound, and a
         // percentage or time left against it would mislead.
-        std::fprintf(stderr, "\rkrug: t = %.4e s  cycle %ld  dt = %.3e s  energy drift %.2e  %.0f s elapsed, until the stop rule   ",
-                     s.time(), s.cycle(), s.last_time_step(), s.ledger().relative_energy_drift(), elapsed);
+        std::fprintf(stderr, "\rkrug: t = %.4e s  cycle %ld  dt = %.3e s (%s)  energy drift %.2e  %.0f s elapsed, until the stop rule   ",
+                     s.time(), s.cycle(), s.last_time_step(), controller.c_str(), s.ledger().relative_energy_drift(), elapsed);
       } else {
-        std::fprintf(stderr, "\rkrug: t = %.4e s (%5.1f %%)  cycle %ld  dt = %.3e s  energy drift %.2e  %.0f s elapsed, ~%.0f s left   ",
-                     s.time(), 100.0 * fraction, s.cycle(), s.last_time_step(),
+        std::fprintf(stderr, "\rkrug: t = %.4e s (%5.1f %%)  cycle %ld  dt = %.3e s (%s)  energy drift %.2e  %.0f s elapsed, ~%.0f s left   ",
+                     s.time(), 100.0 * fraction, s.cycle(), s.last_time_step(), controller.c_str(),
                      s.ledger().relative_energy_drift(), elapsed, remaining);
       }
+      progress_shown = true;
       if (args.verbose) std::fputc('\n', stderr);
     }
     return true;
@@ -144,7 +164,7 @@ int run(const Arguments& args) {
   install_signal_handlers();
   const krug::io::RunResult result = restarting ? krug::run::restart_scenario(scenario, checkpoint, options)
                                                 : krug::run::run_scenario(scenario, options);
-  if (interactive && last_report > 0.0) std::fputc('\n', stderr);
+  if (interactive && progress_shown && !args.verbose) std::fputc('\n', stderr);
   for (const std::string& warning : result.warnings) std::fprintf(stderr, "krug: warning: %s\n", warning.c_str());
 
   if (args.plots && scenario.output.plots) {
@@ -217,6 +237,9 @@ int main(int argc, char** argv) {
       args.pictures = false;
     } else if (w == "--no-plots" && args.command == "run") {
       args.plots = false;
+    } else if (w == "--help" || w == "-h") {
+      std::fputs(std::string(usage).c_str(), stdout);
+      return 0;
     } else if (!w.empty() && w[0] == '-') {
       return fail_usage("unknown option \"" + w + "\" for krug " + args.command);
     } else if (args.scenario.empty()) {

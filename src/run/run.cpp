@@ -86,6 +86,10 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     result.checkpoint = recorder.directory() / "checkpoint.bin";
     write_checkpoint(result.checkpoint, simulation.state(), progress, scenario_hash);
   };
+  if (options.on_start) options.on_start(simulation);
+  EventWatch events(simulation);
+  const std::string projectile_name =
+      scenario.penetration ? simulation.bodies()[static_cast<std::size_t>(scenario.penetration->projectile)].name : "";
   try {
     while (!simulation.finished()) {
       simulation.step();
@@ -97,6 +101,9 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
         projectile = simulation.summarise(simulation.bodies()[static_cast<std::size_t>(p)]);
         observe_penetration(simulation, *scenario.penetration, *projectile, *loop.penetration);
         if (loop.stop && loop.stop->rule().body_index != p) projectile.reset();
+      }
+      if (options.on_event) {
+        for (const RunEvent& event : events.observe(simulation, loop.penetration, projectile_name)) options.on_event(event);
       }
       if (loop.stop && observe_stop(simulation, *loop.stop, scenario, loop.penetration, projectile)) {
         result.stopped_by = "stop rule";

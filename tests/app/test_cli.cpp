@@ -246,3 +246,36 @@ TEST_CASE("a killed run leaves whole files, a rerun clears the earlier run's out
     CHECK(text.find("</VTKFile>") != std::string::npos);
   }
 }
+
+TEST_CASE("the console echoes the set-up and reports events as they happen", "[app][cli]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_events");
+  const auto r = run_krug({"run", (fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json").string(), "--out",
+                           (dir / "out").string(), "--no-plots", "--no-pictures"},
+                          dir / "run.log");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  // The set-up: geometry, each material with its models, each body with zones and extent, the first step.
+  CHECK_THAT(r.output, Catch::Contains("krug: axisymmetric geometry (z, r), end time 1.2e-05 s"));
+  CHECK_THAT(r.output, Catch::Contains("krug: material steel: 7850 kg/m^3, eos linear, strength perfectly_plastic"));
+  CHECK_THAT(r.output, Catch::Contains("krug: body plate: al6061, 528 zones, 585 nodes, z -3..0 mm, r 0..25 mm"));
+  CHECK_THAT(r.output, Catch::Contains("krug: first time step "));
+  CHECK_THAT(r.output, Catch::Contains(", set by "));
+  // Events in the order they happen, each once.
+  const auto contact = r.output.find(": first contact (");
+  const auto damage = r.output.find("plate: first damaged zone");
+  const auto conversion = r.output.find("plate: first zone converted to free elements");
+  CHECK(contact != std::string::npos);
+  CHECK(damage != std::string::npos);
+  CHECK(conversion != std::string::npos);
+  CHECK(contact < damage);
+  CHECK(damage < conversion);
+  CHECK(r.output.find("plate: first damaged zone", damage + 1) == std::string::npos);
+  // The summary agrees that the plate was damaged and converted zones.
+  const Json summary = krug::test::read_json(dir / "out" / "summary.json");
+  CHECK(summary["bodies"]["plate"]["fracture"]["damaged_zones"].get<long>() > 0);
+  // `krug run --help` prints the usage and succeeds.
+  const auto help = run_krug({"run", "--help"}, dir / "help.log");
+  CHECK(help.exit_code == 0);
+  CHECK_THAT(help.output, Catch::StartsWith("usage:"));
+}

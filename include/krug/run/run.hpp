@@ -8,6 +8,7 @@
 
 #include "krug/io/outputs.hpp"
 #include "krug/io/scenario.hpp"
+#include "krug/run/events.hpp"
 
 namespace krug::run {
 
@@ -23,6 +24,10 @@ struct RunOptions {
   // Set from outside (a signal handler) to interrupt: the loop writes DIR/checkpoint.bin and ends the
   // run with status "failed", message "interrupted", stopped_by "interrupted".
   const std::atomic<bool>* interrupt = nullptr;
+  // Called once with the starting state (fresh or restored), before the first cycle.
+  std::function<void(const Simulation&)> on_start;
+  // Called as each event happens (EventWatch: first contact, first damage, conversion, erosion, perforation).
+  std::function<void(const RunEvent&)> on_event;
   // Called once with the final state (however the run ended), before the final outputs are written.
   std::function<void(const Simulation&)> on_finish;
   // Pictures of the states (the app's PNG writer); none when empty.
