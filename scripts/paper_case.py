@@ -217,6 +217,11 @@ def damage_onsets(run_dir, scenario):
     return best
 
 
+# What the report says when no snapshot shows a damaged zone there: damage is read from the snapshots,
+# and a zone damaged and converted between two of them is not seen.
+NOT_SEEN = "none seen in the snapshots (a zone damaged and converted between two snapshots is missed)"
+
+
 def report(run_dirs, csv_path):
     """One row per run: residual velocity, loss, perforation, plug, debris ahead, eroded mass, ledgers."""
     rows = []
@@ -296,7 +301,7 @@ def report(run_dirs, csv_path):
               f"body {r['residual']:.1f} dU/U0 {r['dU_over_U0']:.3f} "
               f"core {r['core_residual']:.1f} perforated {r['perforated']} plug {r['plug_mass_g']:.3f} g eroded {100 * r['eroded_fraction']:.2f} % "
               f"drift {r['energy_drift']:.1e} wall {r['wall_seconds']:.0f} s\n    first damage on the axis (time @ depth fraction): "
-              f"{r['first_damage_on_axis']}\n    first damage: {r['first_damage']}")
+              f"{r['first_damage_on_axis'] or NOT_SEEN}\n    first damage: {r['first_damage'] or NOT_SEEN}")
 
 
 def velocity_history(run_dirs, csv_path):

@@ -4,7 +4,7 @@
 usage: plot_history.py DIR/history.csv OUTDIR
 
 Writes OUTDIR/energy.png (the energy ledger: kinetic, internal, contact, contact_overlap, converted, boundary,
-total), OUTDIR/velocity.png (each body's mass-weighted velocity, both components),
+total; and, dotted, the parts of internal energy that are plastic, viscous and hourglass work), OUTDIR/velocity.png (each body's mass-weighted velocity, both components),
 OUTDIR/time_step.png and OUTDIR/energy_drift.png. Needs matplotlib (Debian: python3-matplotlib);
 exits with code 3 when it is missing, 2 on a bad file, so the caller can say why.
 """
@@ -74,6 +74,9 @@ def main(argv):
               ("kinetic", "internal", "contact", "contact_overlap", "converted", "boundary") if name in columns]
     if "total" in columns:
         energy.append(("total", columns["total"], "k--"))
+    # Parts of the internal energy (booked inside it, not added to the total).
+    energy += [(f"{name} (part of internal)", columns[name], ":") for name in ("plastic", "viscous", "hourglass")
+               if name in columns]
     figure("energy.png", "Energy ledger", energy, "energy (J)")
 
     bodies = [name[:-3] for name in header if name.endswith(("_vx", "_vz"))]

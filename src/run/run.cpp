@@ -23,6 +23,9 @@ using io::write_checkpoint;
 
 namespace {
 
+// The share of the internal energy beyond which the hourglass work earns a warning.
+constexpr double hourglass_warning_fraction = 0.05;
+
 // Where a run stands between cycles, apart from the simulation and the recorder.
 struct LoopState {
   std::optional<StopMonitor> stop;
@@ -147,6 +150,21 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
       result.warnings.push_back(fmt::format(
           "the run ended ({}) before the projectile had cleared its targets or stopped: the penetration figures are "
           "those of an unfinished perforation (raise end_time)", result.stopped_by));
+    }
+  }
+  {
+    // Hourglass work is numerical: a large share of the internal energy means the mesh's hourglass
+    // modes carried a good part of the deformation, and the strains and stresses there are suspect.
+    // The energy put into the zones: what they hold now plus what left the mesh with converted zones.
+    const EnergyLedger& e = simulation.ledger().energy;
+    const double into_zones = e.internal + e.converted;
+    if (into_zones > 0.0 && e.hourglass > hourglass_warning_fraction * into_zones) {
+      result.warnings.push_back(fmt::format(
+          "hourglass work is {:.1f} % of the energy put into the zones ({:.4g} J of {:.4g} J, internal plus converted): "
+          "the mesh's hourglass modes carried part of the deformation; refine the mesh where it deforms most, or "
+          "check controls.hourglass",
+          100.0 * e.hourglass / into_zones, simulation.whole_body_factor() * e.hourglass,
+          simulation.whole_body_factor() * into_zones));
     }
   }
   recorder.finish(simulation, result);
