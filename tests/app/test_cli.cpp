@@ -10,6 +10,8 @@
 #include <functional>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -278,4 +280,28 @@ TEST_CASE("the console echoes the set-up and reports events as they happen", "[a
   const auto help = run_krug({"run", "--help"}, dir / "help.log");
   CHECK(help.exit_code == 0);
   CHECK_THAT(help.output, Catch::StartsWith("usage:"));
+}
+
+TEST_CASE("a large share of hourglass work is a warning on the console and in summary.json", "[app][cli]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("cli_hourglass");
+  // The beryllium plate (E7) bends in one-point zones, whose hourglass modes carry much of it; Sod (a gas)
+  // does almost no hourglass work.
+  const auto plate = run_krug({"run", example("beryllium_plate.json").string(), "--out", (dir / "plate").string(),
+                               "--quiet", "--no-plots", "--no-pictures"},
+                              dir / "plate.log");
+  REQUIRE(plate.exit_code == 0);
+  const Json summary = krug::test::read_json(dir / "plate" / "summary.json");
+  const auto& e = summary["ledger"]["energy"];
+  const double share = e["hourglass"].get<double>() / (e["internal"].get<double>() + e["converted"].get<double>());
+  CHECK(share > 0.05);
+  REQUIRE(summary["warnings"].size() == 1);
+  CHECK_THAT(summary["warnings"][0].get<std::string>(),
+             Catch::StartsWith(fmt::format("hourglass work is {:.1f} % of the energy put into the zones", 100.0 * share)));
+  CHECK_THAT(plate.output, Catch::Contains("krug: warning: hourglass work is"));
+  const auto sod = run_krug({"run", example("sod.json").string(), "--out", (dir / "sod").string(), "--quiet",
+                             "--no-plots", "--no-pictures"},
+                            dir / "sod.log");
+  REQUIRE(sod.exit_code == 0);
+  CHECK(krug::test::read_json(dir / "sod" / "summary.json")["warnings"].empty());
 }
