@@ -209,6 +209,20 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
       variant.name += fmt::format("_{}={}", file_safe(leaf_name(parameters[k].path)),
                                   file_safe(value.is_string() ? value.get<std::string>() : value.dump()));
     }
+    // The title says which variant this is, so that no picture or log of the 400 m/s variant reads as
+    // the base scenario's "at 800 m/s" (unless a --set gives the title itself).
+    std::string settings;
+    bool title_set = false;
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      settings += fmt::format("{}{}={}", k == 0 ? "" : ", ", parameters[k].path, variant.values[k]);
+      title_set = title_set || parameters[k].path == "title";
+    }
+    if (!title_set) {
+      const std::string base_title = base.contains("title") && base["title"].is_string() ? base["title"].get<std::string>() : "";
+      variant.title = fmt::format("{}{}sweep variant {}: {}", base_title, base_title.empty() ? "" : " - ", variant.name.substr(0, 3),
+                                  settings);
+      document["title"] = variant.title;
+    }
     variant.directory = directory / variant.name;
     variant.scenario = variant.directory / "scenario.json";
     const std::string text = document.dump(2) + "\n";
@@ -227,6 +241,7 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
     for (std::size_t k = 0; k < parameters.size(); ++k) {
       set_path(document, parameters[k], OrderedJson::parse(variant.values[k]));
     }
+    if (!variant.title.empty()) document["title"] = variant.title;
     write_text_atomically(variant.scenario, document.dump(2) + "\n");
   }
   return variants;

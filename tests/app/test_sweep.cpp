@@ -82,7 +82,9 @@ TEST_CASE("variants are the cartesian product, checked by the reader before anyt
   const auto written = krug::test::read_json(variants[3].scenario);
   CHECK(written["bodies"][0]["initial"]["velocity"][0] == 20);
   CHECK(written["controls"]["cfl"] == 0.5);  // "controls" was not in the file: created
-  CHECK(written["title"] == krug::test::read_json(scenario)["title"]);
+  // The title names the variant after the base title, so that its pictures and logs say which it is.
+  CHECK(written["title"] == krug::test::read_json(scenario)["title"].get<std::string>() +
+                                " - sweep variant 003: bodies[0].initial.velocity[0]=20, controls.cfl=0.5");
 
   auto error_of = [&](const std::string& set) {
     try {

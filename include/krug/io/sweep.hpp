@@ -20,6 +20,7 @@ struct SweepVariant {
   std::vector<std::string> values;  // one JSON text per parameter
   std::filesystem::path directory;  // DIR/<name>
   std::filesystem::path scenario;   // DIR/<name>/scenario.json
+  std::string title;                // the variant's scenario title: the base title, "sweep variant", the settings
 };
 
 // "PATH=V1,V2,..." (values split at commas outside brackets, braces and quotes). InputError when
