@@ -351,7 +351,8 @@ contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bod
   return setup;
 }
 
-OutputSettings read_output(JsonObject output, double end_time, GeometryKind geometry) {
+// `solids`: some material has a strength model (the pictures then show plastic strain by default).
+OutputSettings read_output(JsonObject output, double end_time, GeometryKind geometry, bool solids) {
   OutputSettings o;
   o.directory = output.text("directory", "");
   o.history_interval = output.number("history_interval", end_time / 1000.0, Range::non_negative());
@@ -375,7 +376,7 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
     JsonObject pictures = output.object_or_empty("pictures");
     PictureSettings& p = o.pictures;
     p.enabled = pictures.flag("enabled", true);
-    p.field = pictures.choice("field", picture_fields(), "density");
+    p.field = pictures.choice("field", picture_fields(), solids ? "equivalent_plastic_strain" : "density");
     p.every_snapshot = pictures.flag("every_snapshot", false);
     p.width = static_cast<int>(pictures.integer("width", p.width, 200, 8000));
     p.mirror = pictures.flag("mirror", geometry == GeometryKind::axisymmetric);
@@ -555,7 +556,10 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
 
   scene.controls = read_controls(top.object_or_empty("controls"), end_time, scene.max_zones);
   if (read_limits.max_zones > 0) scene.max_zones = std::min(scene.max_zones, read_limits.max_zones);
-  scenario.output = read_output(top.object_or_empty("output"), end_time, geometry);
+  const bool solids = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+    return !std::holds_alternative<std::variant_alternative_t<0, Strength>>(m.strength);
+  });
+  scenario.output = read_output(top.object_or_empty("output"), end_time, geometry, solids);
   if (auto penetration = top.optional_object("penetration")) {
     scenario.penetration = read_penetration(*penetration, named_bodies);
   }
