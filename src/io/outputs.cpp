@@ -90,7 +90,19 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   Json bodies = Json::object();
   for (const Body& body : simulation.bodies()) {
     const BodySummary b = simulation.summarise(body);
+    // Momentum and kinetic energy of the whole body from its nodes (per m of thickness in planar
+    // geometry); in axisymmetric geometry only the axial momentum exists (a ring's radial momentum is 0).
+    const NodeFields& nodes = simulation.mesh().nodes;
+    double kinetic = 0.0;
+    Vec2 momentum;
+    for (Index n = body.node_begin; n < body.node_end; ++n) {
+      kinetic += 0.5 * nodes.mass[n] * dot(nodes.velocity(n), nodes.velocity(n));
+      momentum += nodes.mass[n] * nodes.velocity(n);
+    }
+    const bool axisymmetric = simulation.geometry() == GeometryKind::axisymmetric;
     bodies[body.name] = {{"mass", b.mass},
+                         {"momentum", {number(whole * momentum.x), axisymmetric ? Json() : Json(number(whole * momentum.y))}},
+                         {"kinetic_energy", number(whole * kinetic)},
                          {"velocity", pair(b.velocity)},
                          {"centroid", pair(b.centroid)},
                          {"bbox", {{"min", pair(b.bbox_min)}, {"max", pair(b.bbox_max)}}},

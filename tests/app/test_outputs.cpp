@@ -130,3 +130,25 @@ TEST_CASE("docs/outputs.md lists exactly the VTK fields written, for both geomet
     CHECK(array_names(vtp, "PointData") == documented_fields("vtp-point-fields", geometry));
   }
 }
+
+TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the ledger's", "[app][outputs]") {
+  // E1: two elastic slabs, planar, no particles. The ledger's kinetic energy is 1/2 sum M |u|^2 over all
+  // nodes at the half step; the bodies' figures are the same sums split by body.
+  for (const char* example : {"verification/slab_impact.json", "verification/taylor_bar.json"}) {
+    INFO(example);
+    const fs::path dir = krug::test::scratch(std::string("summary_bodies_") + (example[13] == 's' ? "slab" : "bar"));
+    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    krug::run::RunOptions options;
+    options.output_directory = dir;
+    REQUIRE(krug::run::run_scenario(scenario, options).status == krug::io::RunStatus::completed);
+    const auto summary = krug::test::read_json(dir / "summary.json");
+    double kinetic = 0.0;
+    for (const auto& [name, body] : summary["bodies"].items()) {
+      kinetic += body["kinetic_energy"].get<double>();
+      const double mass = body["mass"].get<double>();
+      CHECK(body["momentum"][0].get<double>() / mass == Approx(body["velocity"][0].get<double>()).epsilon(1e-12));
+      if (summary["geometry"] == "axisymmetric") CHECK(body["momentum"][1].is_null());
+    }
+    CHECK(kinetic == Approx(summary["ledger"]["energy"]["kinetic"].get<double>()).epsilon(1e-12));
+  }
+}
