@@ -17,7 +17,7 @@ validation study comes from one definition (docs/validation.md):
     scripts/paper_case.py figures RUN PNG [--count N] [--field F] [--vmax V]
     scripts/paper_case.py velocity-history RUN... --csv FILE (core and body velocity per snapshot)
 
-Units in the options are mm, g, m/s; the scenarios are SI. Facts (paper-case.md): lead rho0 11340,
+Units in the options are mm, g, m/s; the scenarios are SI. Facts (docs/validation.md): lead rho0 11340,
 K 50 GPa, mu 5.7 GPa, Y0 0.03 GPa, no fracture; 6061-T6 rho0 2700, K 73 GPa, mu 24.6 GPa, Y0 0.28 GPa,
 elongation criterion eps_* = 0.4, chi_* = 0.03; bullet radius 2.78 mm, hemispherical nose.
 """

@@ -25,7 +25,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// The paper's bullet (reference/paper-case.md): radius 2.78 mm, a .22 LR-like 10.4 mm length with a
+// The paper's bullet (docs/validation.md): radius 2.78 mm, a .22 LR-like 10.4 mm length with a
 // hemispherical nose; and a Taylor bar (flat nose, radius 3.2 mm, length 32.4 mm).
 NosedCylinderParams bullet() {
   NosedCylinderParams p;

@@ -825,7 +825,7 @@ TEST_CASE("Contact three plates struck by a flyer: the last plate takes the puls
 
 namespace {
 
-// The paper's layered target (reference/paper-case.md: three 1 mm 6061-T6 plates in contact, rims
+// The paper's layered target (docs/validation.md: three 1 mm 6061-T6 plates in contact, rims
 // fixed at r = 25 mm) struck by the lead bullet of examples/contact/striker_dishing.json at 355 m/s,
 // fracture off, at the coarse zoning of the striker test: bullet 8 zones across its radius, each plate
 // 3 zones through its 1 mm, 11 + 8 radially. Contact: the bullet against each plate, each plate against

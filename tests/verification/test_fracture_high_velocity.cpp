@@ -3,7 +3,7 @@
 // Stated constants. Striker (not the paper's; a typical hardened steel): rho 7850 kg/m^3, linear EOS
 // K 160 GPa, perfectly plastic mu 80 GPa, Y 1.5 GPa, no fracture; radius 2.5 mm, 10 mm long,
 // hemispherical nose, 8 zones across the radius. Plate: 6061-T6 with the paper's constants
-// (reference/paper-case.md: rho0 2700, K 73 GPa, mu 24.6 GPa, Y0 0.28 GPa, elongation eps_* 0.4,
+// (docs/validation.md: rho0 2700, K 73 GPa, mu 24.6 GPa, Y0 0.28 GPa, elongation eps_* 0.4,
 // loosening chi_* 0.03), 12 zones through the thickness, rim r = 25 mm fixed.
 //
 // Checked: the run reaches its end (12 us) without a numerical failure; mass is exact; axial momentum

@@ -13,7 +13,7 @@
 // what the rule is for. The same run with the rule off (ratio 0) is the comparison. The
 // interior-conversion count is reported.
 //
-// Axisymmetric (z, r). Plate: 6061-T6 with the paper's constants (reference/paper-case.md: rho0 2700,
+// Axisymmetric (z, r). Plate: 6061-T6 with the paper's constants (docs/validation.md: rho0 2700,
 // K 73 GPa, mu 24.6 GPa, Y0 0.28 GPa, elongation eps_* 0.4, chi_* 0.03), 2 mm thick, 6 mm radius,
 // 8 zones through the thickness; radially 8 zones to r = 2 mm, the band r in [2, 2.0625] mm, then
 // 16 zones to the rim r = 6 mm, which is fixed. Punch: a very stiff elastic cylinder ("rigid-ish":

@@ -1,4 +1,4 @@
-// The paper's case (Gulidov & Shabalin 1996; reference/paper-case.md) as regression tests: the 2.6 g
+// The paper's case (Gulidov & Shabalin 1996; docs/validation.md) as regression tests: the 2.6 g
 // lead bullet at 355 m/s through the three 3 mm 6061-T6 targets, at the coarse study resolution of
 // 5 zones per mm (examples/paper/coarse/, made by
 // `scripts/paper_case.py generate examples/paper/coarse --mass 2.6 --kind KIND --zones-per-mm 5`).
@@ -37,7 +37,7 @@ using krug::verification::report;
 
 namespace {
 
-constexpr double bullet_radius = 2.78e-3;  // reference/paper-case.md
+constexpr double bullet_radius = 2.78e-3;  // docs/validation.md
 
 // Earliest damage of a plate: when, at what radius, and how deep in the plate (0 front face, 1 rear
 // face, between the plate's extreme node positions within 0.1 mm of that radius at that moment).
@@ -142,7 +142,7 @@ PaperRun run_paper_case(const std::string& file) {
   REQUIRE(result.penetration.has_value());
   run.penetration = *result.penetration;
   run.stopped_by = result.stopped_by;
-  run.initial_speed = 355.0;  // the scenario's U0 (reference/paper-case.md)
+  run.initial_speed = 355.0;  // the scenario's U0 (docs/validation.md)
   return run;
 }
 
