@@ -19,24 +19,10 @@
 #include "krug/io/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
+#include "../fuzz/seed_scenario.hpp"  // the checkpoint fuzzer's scenario: a fracturing flyer and plate
 
 namespace {
 
-const char* fracturing_plate = R"({
-  "geometry": "planar",
-  "end_time": 1e-5,
-  "materials": { "al": { "density": 2700, "eos": { "model": "linear", "bulk_modulus": 7.3e10 },
-                         "strength": { "model": "perfectly_plastic", "shear_modulus": 2.6e10, "yield_stress": 3e8 },
-                         "fracture": { "elongation": 0.05 } } },
-  "bodies": [ { "name": "flyer", "material": "al",
-                "mesh": { "type": "rectangle", "x": { "from": -0.002, "to": 0, "zones": 4 },
-                                               "y": { "from": 0, "to": 0.004, "zones": 4 } },
-                "initial": { "velocity": [800, 0] } },
-              { "name": "plate", "material": "al",
-                "mesh": { "type": "rectangle", "x": { "from": 0, "to": 0.002, "zones": 4 },
-                                               "y": { "from": 0, "to": 0.004, "zones": 4 } } } ],
-  "contact": { "pairs": [ { "bodies": ["flyer", "plate"] } ] }
-})";
 
 std::string read_bytes(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -60,7 +46,7 @@ std::string resealed(std::string bytes) {
 }  // namespace
 
 TEST_CASE("resealed, edited checkpoints are refused or restore cleanly; none crashes", "[checkpoint][robustness]") {
-  const krug::io::Scenario scenario = krug::io::parse_scenario(fracturing_plate, "plate.json");
+  const krug::io::Scenario scenario = krug::io::parse_scenario(krug::fuzz::seed_scenario, "plate.json");
   krug::Simulation simulation(scenario.setup);
   for (int i = 0; i < 40; ++i) simulation.step();
   const std::filesystem::path dir =
