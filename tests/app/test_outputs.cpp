@@ -3,6 +3,7 @@
 // the new one, never half of one; a write that cannot be made leaves the old file as it was.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -151,4 +152,46 @@ TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the l
     }
     CHECK(kinetic == Approx(summary["ledger"]["energy"]["kinetic"].get<double>()).epsilon(1e-12));
   }
+}
+
+TEST_CASE("docs/outputs.md lists exactly the history.csv columns written", "[app][outputs]") {
+  const fs::path dir = krug::test::scratch("history_columns");
+  const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
+  krug::run::RunOptions options;
+  options.output_directory = dir;
+  krug::io::Scenario short_run = scenario;
+  short_run.setup.controls.end_time = 1e-7;
+  REQUIRE(krug::run::run_scenario(short_run, options).status == krug::io::RunStatus::completed);
+  const std::string history = krug::test::read_text(dir / "history.csv");
+  const std::string header = history.substr(0, history.find('\n'));
+  std::vector<std::string> written;
+  for (std::size_t at = 0;;) {
+    const std::size_t comma = header.find(',', at);
+    written.push_back(header.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  // The documented list, with <body>, <a>, <b> filled in for this scenario (bodies striker and plate, axes z, r).
+  std::vector<std::string> documented;
+  for (const std::string& name : documented_fields("history-columns", "axisymmetric")) {
+    if (name.find("<body>") == std::string::npos) {
+      documented.push_back(name);
+      continue;
+    }
+    for (const char* body : {"striker", "plate"}) {
+      std::string filled = name;
+      filled.replace(filled.find("<body>"), 6, body);
+      for (const auto& [key, axis] : {std::pair{"<a>", "z"}, std::pair{"<b>", "r"}}) {
+        if (const auto k = filled.find(key); k != std::string::npos) filled.replace(k, 3, axis);
+      }
+      documented.push_back(filled);
+    }
+  }
+  // Per body, the documented order is velocity pair then centroid pair; the file groups them by body.
+  std::vector<std::string> sorted_written = written, sorted_documented = documented;
+  std::sort(sorted_written.begin(), sorted_written.end());
+  std::sort(sorted_documented.begin(), sorted_documented.end());
+  CHECK(sorted_written == sorted_documented);
+  CHECK(written.front() == "time");
+  CHECK(written.back() == "particles");
 }
