@@ -168,6 +168,13 @@ bool write_picture(const Simulation& simulation, const io::PictureSettings& sett
     }
   }
   if (active == 0 && particles.size() == 0) return false;
+  if (settings.window) {
+    const auto& w = *settings.window;
+    x0 = w[0];
+    x1 = w[1];
+    y0 = mirror ? -w[3] : w[2];
+    y1 = w[3];
+  }
   if (!(x1 > x0) || !(y1 > y0) || !std::isfinite(x1 - x0) || !std::isfinite(y1 - y0)) return false;
   if (field == "damaged") {
     low = 0.0;
@@ -194,7 +201,7 @@ bool write_picture(const Simulation& simulation, const io::PictureSettings& sett
   // Layout (pixels): the bodies keep their proportions.
   const double width = settings.width;
   const double font = std::max(11.0, 14.0 * width / 1200.0);
-  const double left = 0.04 * width, right = 0.17 * width, top = 4.2 * font, bottom = 3.6 * font;
+  const double left = 0.08 * width, right = 0.17 * width, top = 5.4 * font, bottom = 5.4 * font;
   const double plot_width = width - left - right;
   double scale = plot_width / (x1 - x0);
   double plot_height = (y1 - y0) * scale;
@@ -226,6 +233,11 @@ bool write_picture(const Simulation& simulation, const io::PictureSettings& sett
     }
     cairo_set_source_rgb(cr, c.r, c.g, c.b);
   };
+
+  // A fixed window may cut bodies: draw inside the plot box only.
+  cairo_save(cr);
+  cairo_rectangle(cr, x_offset, y_offset, (x1 - x0) * scale, plot_height);
+  cairo_clip(cr);
 
   // Zones, with thin edges when they are large enough to show them.
   const double mean_size = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(std::max(1L, active))) * scale;
@@ -286,16 +298,54 @@ bool write_picture(const Simulation& simulation, const io::PictureSettings& sett
     cairo_set_dash(cr, nullptr, 0, 0.0);
   }
 
-  // Title, field and time.
+  cairo_restore(cr);  // the clip
+
+  // Axes: ticks and coordinates in mm along the bottom and the left of the drawing.
+  {
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.0);
+    const double x_step = round_length(0.2 * (x1 - x0)), y_step = round_length(0.2 * (y1 - y0));
+    const double base = y_offset + plot_height;
+    cairo_move_to(cr, px(x0), base);
+    cairo_line_to(cr, px(x1), base);
+    cairo_move_to(cr, px(x0), y_offset);
+    cairo_line_to(cr, px(x0), base);
+    cairo_stroke(cr);
+    for (double x = std::ceil(x0 / x_step) * x_step; x <= x1 + 1e-9 * x_step; x += x_step) {
+      cairo_move_to(cr, px(x), base);
+      cairo_line_to(cr, px(x), base + 0.4 * font);
+      cairo_stroke(cr);
+      text(cr, px(x) - 1.2 * font, base + 1.5 * font, fmt::format("{:g}", std::round(x * 1e6) / 1e3), 0.8 * font);
+    }
+    for (double y = std::ceil(y0 / y_step) * y_step; y <= y1 + 1e-9 * y_step; y += y_step) {
+      cairo_move_to(cr, px(x0), py(y));
+      cairo_line_to(cr, px(x0) - 0.4 * font, py(y));
+      cairo_stroke(cr);
+      text(cr, px(x0) - 0.6 * font, py(y) + 0.3 * font, fmt::format("{:g}", std::round(y * 1e6) / 1e3), 0.8 * font,
+           false, true);
+    }
+    const GeometryKind g = simulation.geometry();
+    text(cr, px(x1), base + 2.9 * font, fmt::format("{} (mm)", axis_name(g, 0)), 0.85 * font, false, true);
+    text(cr, 0.3 * font, y_offset - 0.5 * font, fmt::format("{} (mm)", axis_name(g, 1)), 0.85 * font);
+  }
+
+  // Title, field and time, and the bodies with their materials.
   cairo_set_source_rgb(cr, 0, 0, 0);
   text(cr, left, 1.5 * font, title, 1.1 * font, true);
   const std::string unit = unit_of(field);
   text(cr, left, 3.0 * font, time_label(simulation.time()) + "    " + field + (unit[0] ? std::string(" (") + unit + ")" : ""),
        font);
+  std::string legend = "bodies:";
+  for (const Body& body : simulation.bodies()) {
+    legend += fmt::format(" {} ({}){}", body.name, simulation.materials()[static_cast<std::size_t>(body.material)].name,
+                          &body == &simulation.bodies().back() ? "" : ",");
+  }
+  if (particles.size() > 0) legend += fmt::format("; {} free elements", particles.size());
+  text(cr, left, 4.4 * font, legend, 0.85 * font);
 
   // Scale bar.
   const double bar = round_length(0.25 * (x1 - x0));
-  const double bar_y = top + box_height + 1.6 * font;
+  const double bar_y = top + box_height + 4.2 * font;
   cairo_set_line_width(cr, 2.0);
   cairo_move_to(cr, left, bar_y);
   cairo_line_to(cr, left + bar * scale, bar_y);

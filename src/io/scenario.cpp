@@ -389,6 +389,19 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
       p.range = std::make_pair((*range)[0].get<double>(), (*range)[1].get<double>());
       pictures.resolve("range", *range);
     }
+    if (const Json* window = pictures.optional_raw("window")) {
+      const std::string expected = "an array [first from, first to, second from, second to] of finite numbers (m) with "
+                                   "from < to on both axes";
+      if (!window->is_array() || window->size() != 4) pictures.fail("window", expected);
+      std::array<double, 4> w{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (!(*window)[k].is_number() || !std::isfinite((*window)[k].get<double>())) pictures.fail("window", expected);
+        w[k] = (*window)[k].get<double>();
+      }
+      if (!(w[0] < w[1]) || !(w[2] < w[3])) pictures.fail("window", expected);
+      p.window = w;
+      pictures.resolve("window", *window);
+    }
     pictures.finish();
   }
   output.finish();

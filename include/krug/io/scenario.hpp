@@ -3,6 +3,7 @@
 // built from it, ready to run, plus output settings.
 // The format is documented in docs/scenario-format.md. Every error is an InputError naming the
 // JSON path, the value found and what was expected.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -23,6 +24,9 @@ struct PictureSettings {
   int width = 1200;               // pixels
   bool mirror = false;            // axisymmetric: also draw the mirror image below the axis
   std::optional<std::pair<double, double>> range;  // fixed colour range; default: the field's extent
+  // Fixed view (m): first axis from..to, second axis from..to; default: what is drawn. With
+  // every_snapshot, a window and a range make the pictures of a run compare frame by frame.
+  std::optional<std::array<double, 4>> window;
 };
 
 // Names of the fields a picture can show.
