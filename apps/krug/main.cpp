@@ -32,8 +32,8 @@ constexpr std::string_view usage = R"(usage:
   krug run --restart DIR/checkpoint.bin [--out DIR] [--threads N] [--quiet | --verbose] [--no-pictures] [--no-plots]
       Continues a run from a checkpoint (output.checkpoint_interval, or written on Ctrl-C/SIGTERM),
       with the scenario.resolved.json next to it; outputs go to DIR (default: the checkpoint's).
-  krug validate SCENARIO.json
-      Checks a scenario without running it.
+  krug validate SCENARIO.json [--quiet]
+      Checks a scenario without running it, and describes the set-up the run would start from.
   krug sweep SCENARIO.json --set PATH=V1,V2,... [--set ...] [--jobs N] [--out DIR] [--quiet]
       Runs every combination of the values (PATH like materials.steel.density or
       bodies[0].initial.velocity[0]) in parallel processes into DIR/<variant>/ and writes
@@ -260,6 +260,12 @@ int main(int argc, char** argv) {
       krug::run::validate_scenario(scenario);
       std::printf("krug: %s is valid (%zu bodies, %d zones)\n", args.scenario.c_str(), scenario.setup.bodies.size(),
                   scenario.setup.mesh.zones.size());
+      if (!args.quiet) {  // what the run would start from, as `krug run` echoes it
+        const krug::Simulation simulation(scenario.setup);
+        for (const std::string& line : krug::run::start_up_lines(scenario, simulation)) {
+          std::printf("krug: %s\n", line.c_str());
+        }
+      }
       return 0;
     }
     if (args.command == "sweep") {

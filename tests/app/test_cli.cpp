@@ -276,6 +276,12 @@ TEST_CASE("the console echoes the set-up and reports events as they happen", "[a
   // The summary agrees that the plate was damaged and converted zones.
   const Json summary = krug::test::read_json(dir / "out" / "summary.json");
   CHECK(summary["bodies"]["plate"]["fracture"]["damaged_zones"].get<long>() > 0);
+  // `krug validate` echoes the same set-up without running.
+  const auto validated = run_krug({"validate", (fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json").string()},
+                                  dir / "validate.log");
+  CHECK(validated.exit_code == 0);
+  CHECK_THAT(validated.output, Catch::Contains("krug: body plate: al6061, 528 zones, 585 nodes, z -3..0 mm, r 0..25 mm"));
+  CHECK(validated.output.find("first contact") == std::string::npos);
   // `krug run --help` prints the usage and succeeds.
   const auto help = run_krug({"run", "--help"}, dir / "help.log");
   CHECK(help.exit_code == 0);
