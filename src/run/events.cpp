@@ -1,7 +1,6 @@
 #include "krug/run/events.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <variant>
 
 #include <fmt/format.h>
@@ -58,21 +57,13 @@ std::vector<std::string> start_up_lines(const io::Scenario& scenario, const Simu
     const auto strength = std::visit([](const auto& model) { return model.name; }, m.strength);
     lines.push_back(fmt::format("material {}: {} kg/m^3, eos {}, strength {}", m.name, m.reference_density, eos, strength));
   }
-  const Mesh& mesh = simulation.mesh();
   for (const Body& body : simulation.bodies()) {
-    double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    double hi[2] = {-lo[0], -lo[1]};
-    for (Index n = body.node_begin; n < body.node_end; ++n) {
-      lo[0] = std::min(lo[0], mesh.nodes.x[n]);
-      hi[0] = std::max(hi[0], mesh.nodes.x[n]);
-      lo[1] = std::min(lo[1], mesh.nodes.y[n]);
-      hi[1] = std::max(hi[1], mesh.nodes.y[n]);
-    }
     const BodySummary s = simulation.summarise(body);
     lines.push_back(fmt::format("body {}: {}, {} zones, {} nodes, {} {:.4g}..{:.4g} mm, {} {:.4g}..{:.4g} mm, mass {:.4g} kg{}",
                                 body.name, simulation.materials()[static_cast<std::size_t>(body.material)].name,
                                 body.zone_end - body.zone_begin, body.node_end - body.node_begin, axis_name(g, 0),
-                                lo[0] * 1e3, hi[0] * 1e3, axis_name(g, 1), lo[1] * 1e3, hi[1] * 1e3,
+                                s.bbox_min.x * 1e3, s.bbox_max.x * 1e3, axis_name(g, 1), s.bbox_min.y * 1e3,
+                                s.bbox_max.y * 1e3,
                                 s.mass,  // whole body in RZ (summarise), per m of thickness in planar
                                 g == GeometryKind::planar ? " per m of thickness" : ""));
   }
