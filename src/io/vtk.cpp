@@ -110,6 +110,40 @@ std::array<std::string, 4> deviator_names(GeometryKind geometry) {
   return {"deviatoric_stress_xx", "deviatoric_stress_yy", "deviatoric_stress_xy", "deviatoric_stress_zz"};
 }
 
+// Text safe inside an XML attribute.
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Data set (field) data, written as text in either encoding: the time (ParaView's TimeValue, s) and
+// one one-value array per body whose name reads "body I: NAME (MATERIAL)" and whose value is I, the
+// index the `body` arrays hold. ParaView lists them under the data set's field data.
+void write_field_data(VtkDocument& vtk, const Simulation& simulation) {
+  vtk.xml() << "    <FieldData>\n"
+            << fmt::format(R"(      <DataArray type="Float64" Name="TimeValue" NumberOfTuples="1" format="ascii">{:.17g}</DataArray>)",
+                           simulation.time())
+            << '\n';
+  const auto& bodies = simulation.bodies();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string name =
+        fmt::format("body {}: {} ({})", i, bodies[i].name, simulation.materials()[bodies[i].material].name);
+    vtk.xml() << fmt::format(R"(      <DataArray type="Int32" Name="{}" NumberOfTuples="1" format="ascii">{}</DataArray>)",
+                             xml_escaped(name), i)
+              << '\n';
+  }
+  vtk.xml() << "    </FieldData>\n";
+}
+
 }  // namespace
 
 void write_vtu(const Simulation& simulation, const std::filesystem::path& file, VtkEncoding encoding) {
@@ -153,8 +187,9 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
     time_step.push_back(mesh.zones.stable_time_step[z]);
   }
   VtkDocument vtk(encoding, "UnstructuredGrid");
-  vtk.xml() << "  <UnstructuredGrid>\n"
-            << fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfCells="{}">)", mesh.nodes.size(), zones.size()) << '\n'
+  vtk.xml() << "  <UnstructuredGrid>\n";
+  write_field_data(vtk, simulation);
+  vtk.xml() << fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfCells="{}">)", mesh.nodes.size(), zones.size()) << '\n'
             << "      <Points>\n";
   vtk.array("coordinates", 3, points);
   vtk.xml() << "      </Points>\n      <Cells>\n";
@@ -193,8 +228,9 @@ void write_vtp(const Simulation& simulation, const std::filesystem::path& file, 
     body.push_back(particles.body[i]);
   }
   VtkDocument vtk(encoding, "PolyData");
-  vtk.xml() << "  <PolyData>\n"
-            << fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfVerts="{}" NumberOfLines="0" NumberOfStrips="0" NumberOfPolys="0">)",
+  vtk.xml() << "  <PolyData>\n";
+  write_field_data(vtk, simulation);
+  vtk.xml() << fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfVerts="{}" NumberOfLines="0" NumberOfStrips="0" NumberOfPolys="0">)",
                            particles.size(), particles.size())
             << "\n      <Points>\n";
   vtk.array("coordinates", 3, points);

@@ -43,8 +43,26 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def read_vtu(path, zones=None, bodies=None, geometry=None):
+def check_field_data(path, field_data, names, time=None):
+    """Data set fields: TimeValue (s) and one array "body I: NAME (MATERIAL)" holding I per body."""
+    check("TimeValue" in field_data, f"{path}: field data TimeValue missing")
+    if time is not None and "TimeValue" in field_data:
+        value = float(field_data["TimeValue"][0])
+        check(abs(value - time) <= 1e-9 * max(time, 1e-30), f"{path}: TimeValue {value}, expected {time}")  # run.pvd: 10 digits
+    if names is None:
+        return
+    labels = sorted(k for k in field_data if k.startswith("body "))
+    check(len(labels) == len(names), f"{path}: {len(labels)} body labels for {len(names)} bodies")
+    for i, name in enumerate(names):
+        label = [k for k in labels if k.startswith(f"body {i}: {name} (")]
+        check(len(label) == 1, f"{path}: no field data array names body {i} ({name}); found {labels}")
+        if label:
+            check(int(field_data[label[0]][0]) == i, f"{path}: {label[0]} holds {field_data[label[0]][0]}")
+
+
+def read_vtu(path, zones=None, bodies=None, geometry=None, names=None, time=None):
     mesh = meshio.read(path)
+    check_field_data(path, mesh.field_data, names, time)
     quads = sum(len(block.data) for block in mesh.cells if block.type == "quad")
     others = [block.type for block in mesh.cells if block.type != "quad"]
     check(not others, f"{path}: only quad cells expected, found {others}")
@@ -107,8 +125,9 @@ def vtk_arrays(path):
     return root, arrays
 
 
-def read_vtp(path):
+def read_vtp(path, names=None, time=None):
     root, arrays = vtk_arrays(path)
+    check_field_data(path, {k: v for k, v in arrays.items() if k == "TimeValue" or k.startswith("body ")}, names, time)
     check(root.get("type") == "PolyData", f"{path}: not VTK PolyData")
     count = int(root.find("PolyData/Piece").get("NumberOfPoints"))
     check(len(arrays["coordinates"]) == 3 * count, f"{path}: {len(arrays['coordinates'])} coordinates for {count} points")
@@ -133,10 +152,11 @@ def main():
     zones = sum(body["zones"] for body in summary["bodies"].values())
     bodies = len(summary["bodies"])
 
-    final = read_vtu(os.path.join(args.work, "final.vtu"), zones, bodies)
+    names = list(summary["bodies"])  # in the scenario's order
+    final = read_vtu(os.path.join(args.work, "final.vtu"), zones, bodies, names=names, time=summary["time"])
     print(f"final.vtu: {len(final.points)} points, {zones} quads, fields {sorted(final.cell_data)}")
 
-    count, arrays = read_vtp(os.path.join(args.work, "final_particles.vtp"))
+    count, arrays = read_vtp(os.path.join(args.work, "final_particles.vtp"), names, summary["time"])
     check(count == summary["particles"]["count"], f"final_particles.vtp: {count} particles, summary says "
           f"{summary['particles']['count']}")
     check(count > 0, "the scenario should make particles")
@@ -156,10 +176,10 @@ def main():
     check(all(a < b for a, b in zip(times, times[1:])), f"run.pvd: times not increasing: {times}")
     check(times[0] == 0.0, "run.pvd: the first snapshot is not at t = 0")
     check(abs(times[-1] - summary["time"]) <= 1e-6 * summary["time"], "run.pvd: the last snapshot is not the end")
-    for _, name in meshes:
-        read_vtu(os.path.join(args.work, name), bodies=bodies)
-    for _, name in particles:
-        read_vtp(os.path.join(args.work, name))
+    for t, name in meshes:
+        read_vtu(os.path.join(args.work, name), bodies=bodies, names=names, time=t)
+    for t, name in particles:
+        read_vtp(os.path.join(args.work, name), names, t)
     print(f"run.pvd: {len(meshes)} mesh and {len(particles)} particle snapshots, t = {times[0]} .. {times[-1]}")
     # The same run written as text: every array of final.vtu and final_particles.vtp equal, value by value
     # (the text holds 10 significant digits).
