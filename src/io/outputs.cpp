@@ -86,7 +86,9 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                            {"boundary", number(whole * e.boundary)},
                            {"total", number(whole * e.total())},
                            {"initial_total", number(whole * ledger.initial_total_energy)},
-                           {"relative_drift", number(ledger.relative_energy_drift())}};
+                           {"relative_drift", number(ledger.relative_energy_drift())},
+                           {"drift_limit", energy_drift_limit},
+                           {"closed", ledger.energy_closed()}};
   Json bodies = Json::object();
   for (const Body& body : simulation.bodies()) {
     const BodySummary b = simulation.summarise(body);

@@ -167,6 +167,15 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
           simulation.whole_body_factor() * into_zones));
     }
   }
+  if (!simulation.ledger().energy_closed()) {
+    const bool approximate = simulation.geometry() == GeometryKind::axisymmetric &&
+                             simulation.controls().axisymmetric_form == AxisymmetricForm::area_weighted;
+    result.warnings.push_back(fmt::format(
+        "the energy ledger did not close: relative drift {:.3g}, above {:.0e}{}; the figures of this run are suspect "
+        "(summary.json ledger.energy.closed is false)",
+        simulation.ledger().relative_energy_drift(), energy_drift_limit,
+        approximate ? " (the area-weighted axisymmetric form is not conservative: its drift shrinks with the mesh)" : ""));
+  }
   recorder.finish(simulation, result);
   return result;
 }

@@ -181,6 +181,22 @@ TEST_CASE("setup errors name the body: overlap, side, density, zones, material",
     scene.bodies[0] = good.bodies[0];
     CHECK(error_of(scene).rfind("bodies[1].mesh: 15 zones (33 in the scene with the bodies before it", 0) == 0);
   }
+  SECTION("the area-weighted RZ form is refused for a body with strength, accepted for gases") {
+    setup::SceneDescription scene = good;
+    scene.geometry = GeometryKind::axisymmetric;
+    scene.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
+    for (auto& body : scene.bodies) body.boundary.clear();  // planar side names
+    CHECK(error_of(scene) == "(no error)");  // both blocks are gas
+    scene.materials.push_back(scene.materials[0]);
+    scene.materials.back().name = "steel";
+    scene.materials.back().strength = Elastic{8.0e10};
+    scene.bodies[1].material = 1;
+    const std::string e = error_of(scene);
+    CHECK(e.rfind("controls.axisymmetric_form: \"area_weighted\" is for gases only, and body \"right\"", 0) == 0);
+    CHECK(e.find("material \"steel\" with strength") != std::string::npos);
+    scene.controls.axisymmetric_form = AxisymmetricForm::control_volume;
+    CHECK(error_of(scene) == "(no error)");
+  }
   SECTION("a material index outside the scene's materials") {
     setup::SceneDescription scene = good;
     scene.bodies[1].material = 3;
