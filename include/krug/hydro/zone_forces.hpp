@@ -190,10 +190,12 @@ template <ViscosityModel Visc>
 }
 
 // Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only,
-// added to the batch's pressure; writes zones.viscous_speed.
+// added to the batch's pressure; writes zones.viscous_speed and adds its dissipation q (-dV/dt) to
+// `viscous_power` in zone order (the rate of work the edge model books as its dampers' dissipation).
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_scalar_viscosity(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
-                                                          const ForceSettings settings) {
+                                                          const ForceSettings settings, double& viscous_power) {
+  double power = viscous_power;
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
     if (!zones.active[z]) continue;
@@ -214,12 +216,15 @@ template <GeometryKind G>
     if (divergence < 0.0) {
       const double length = quad::smallest_altitude(x, area);
       const double speed = settings.cq_s * length * -divergence;
-      batch.pressure[i] += rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * zones.sound_speed[z]);
+      const double q = rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * zones.sound_speed[z]);
+      batch.pressure[i] += q;
       zones.viscous_speed[z] = 2.0 * speed;
+      power += q * -volume_rate;
     } else {
       zones.viscous_speed[z] = 0.0;
     }
   }
+  viscous_power = power;
 }
 
 // Stress corner forces, sigma = s - p I, into the batch's forces (and mean radius V/A); one loop per
@@ -457,7 +462,7 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
     const int count = static_cast<int>(std::min<Index>(detail::zone_batch, zone_end - first));
     batch.gather(mesh, first, count);
     detail::batch_geometry<Visc>(batch, count, first, zones);
-    if constexpr (Visc == ViscosityModel::scalar) detail::batch_scalar_viscosity<G>(batch, count, first, zones, settings);
+    if constexpr (Visc == ViscosityModel::scalar) detail::batch_scalar_viscosity<G>(batch, count, first, zones, settings, power.viscous);
     if (settings.area_weighted) {
       detail::batch_stress_forces<G, true>(batch, count, first, zones);
     } else {
