@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -111,10 +112,12 @@ int run(const Arguments& args) {
 
   const bool want_pictures = args.pictures && scenario.output.pictures.enabled;
   if (want_pictures && krug::app::pictures_available()) {
-    const krug::io::PictureSettings settings = scenario.output.pictures;
+    // With every_snapshot and no window of its own, the first picture fixes the view for the run.
+    auto settings = std::make_shared<krug::io::PictureSettings>(scenario.output.pictures);
     options.picture = [settings, title](const krug::Simulation& s, const std::filesystem::path& dir,
                                         const std::string& name) {
-      (void)krug::app::write_picture(s, settings, title, dir, name);
+      if (settings->every_snapshot && !settings->window) settings->window = krug::app::default_fixed_window(s);
+      (void)krug::app::write_picture(s, *settings, title, dir, name);
     };
   } else if (want_pictures && !args.quiet) {
     std::fprintf(stderr, "krug: no pictures: this krug was built without Cairo (libcairo2-dev)\n");

@@ -138,6 +138,12 @@ TEST_CASE("krug run writes its files, pictures and plots, and a missing Python d
     CHECK(pictures == snapshots / 2);
     CHECK(png_size(dir / "out" / "pictures" / "final.png").first == 640);
     CHECK(png_size(dir / "out" / "pictures" / "state_00000.png").second > 100);
+    // One view for the whole run (the first picture's, widened): every frame has the same size.
+    const auto first_size = png_size(dir / "out" / "pictures" / "state_00000.png");
+    for (const auto& entry : fs::directory_iterator(dir / "out" / "pictures")) {
+      INFO(entry.path().filename().string());
+      CHECK(png_size(entry.path()) == first_size);
+    }
   } else {
     CHECK_THAT(r.output, Catch::Contains("no pictures"));
   }
