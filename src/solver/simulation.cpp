@@ -108,6 +108,9 @@ void Simulation::initialise() {
         const quad::Corners region = quad::corner_region(x, p);
         const double corner_volume = axisymmetric ? axisymmetric_corners[p] : quad::area(region);
         zones.corner_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)] = zones.density[z] * corner_volume;
+        // The corner's region of the median mesh (its subzone), with the zone's volume measure.
+        zones.subzone_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)] =
+            zones.density[z] * (axisymmetric ? quad::axisymmetric_volume(region) : quad::area(region));
         nodes.mass[n[p]] += zones.density[z] * corner_volume;
       }
     }

@@ -93,3 +93,55 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov]
   check_sedov(run_to_end(scenario),
               {"Sedov, spherical (RZ polar, area weighted)", Coordinate::radius, 1.0, spherical_energy});
 }
+
+namespace {
+
+// Shock radius on a ray at `degrees` from the axis: the radius of the densest zone whose centre lies
+// within 2.5 degrees of the ray (4 degrees for the axis and the z = 0 plane, which have zones on one side).
+double shock_on_ray(const Simulation& sim, double degrees) {
+  const Mesh& mesh = sim.mesh();
+  const double half_width = (degrees <= 0.0 || degrees >= 90.0) ? 4.0 : 2.5;
+  double best_density = -1.0, radius = 0.0;
+  for (Index z = 0; z < mesh.zones.size(); ++z) {
+    if (!mesh.zones.active[z]) continue;
+    Vec2 c{};
+    for (Index n : mesh.zones.corners[z]) c += 0.25 * mesh.nodes.position(n);
+    const double angle = std::atan2(c.y, c.x) * 180.0 / std::numbers::pi;
+    if (std::abs(angle - degrees) > half_width) continue;
+    if (mesh.zones.density[z] > best_density) {
+      best_density = mesh.zones.density[z];
+      radius = norm(c);
+    }
+  }
+  return radius;
+}
+
+}  // namespace
+
+// F7 (docs/verification.md): on a rectangular RZ mesh the spherical Sedov stops near the axis with
+// default controls. Subzonal pressures (Caramana & Shashkov 1998) let it reach t = 1, with the shock
+// within a zone of 1.0 on the rays from 15 to 90 degrees, but the axis row jets outwards (measured: the
+// densest axis zone at r = 1.107 on 50 x 50, 1.195 on 100 x 100, with k = 0.5): a cure for the tangle, not
+// for the axis. The shock on the axis ray is reported, not asserted.
+TEST_CASE("Sedov spherical on a rectangular RZ mesh reaches t = 1 with subzonal pressures", "[sedov][axisymmetric][subzonal]") {
+  io::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  const double zone = 1.2 / 50.0;
+  {
+    const Run run = run_to_end(scenario);
+    report("Sedov, spherical (RZ rectangle 50 x 50), default controls", "reaches t = 1", "1", run.simulation.time(),
+           run.completed() ? "completed" : "stops (F7)", run.simulation.mesh().zones.size(), run.seconds);
+  }
+  scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
+  const Run run = run_to_end(scenario);
+  INFO(run.failure);
+  REQUIRE(run.completed());
+  CHECK(run.simulation.ledger().relative_energy_drift() < 1e-12);
+  for (const double ray : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
+    const double shock = shock_on_ray(run.simulation, ray);
+    INFO("ray " << ray << " degrees: shock at " << shock);
+    report("Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5", format_number("shock r on the %.0f degree ray", ray),
+           "1.000", shock, format_number("%+.1f zones", (shock - 1.0) / zone), run.simulation.mesh().zones.size(),
+           run.seconds);
+    if (ray > 0.0) CHECK(std::abs(shock - 1.0) < 2.0 * zone);
+  }
+}

@@ -89,3 +89,16 @@ TEST_CASE("Uniform collapse of a sphere on an RZ polar mesh: exact coasting moti
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
   check_collapse("Uniform collapse, sphere (RZ polar, area weighted)", 3, run_to_end(scenario));
 }
+
+// Subzonal pressures (controls.hourglass.subzonal_pressure) vanish for motion that keeps the corner
+// regions' volume ratios: a uniform collapse (a scaling about the origin) stays exact with them on.
+TEST_CASE("Uniform collapse with subzonal pressures on: still exact", "[uniform_collapse][subzonal]") {
+  for (const char* file : {"uniform_collapse_cylindrical.json", "uniform_collapse_spherical.json"}) {
+    io::Scenario scenario = load_example(file);
+    scenario.setup.controls.hourglass.subzonal_pressure = 1.0;
+    const bool spherical = std::string(file) == "uniform_collapse_spherical.json";
+    check_collapse(spherical ? "Uniform collapse, sphere (RZ polar), subzonal pressures"
+                             : "Uniform collapse, cylinder (XY polar), subzonal pressures",
+                   spherical ? 3 : 2, run_to_end(scenario));
+  }
+}

@@ -21,6 +21,10 @@ struct ViscosityParams {
 struct HourglassParams {
   double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
   double stiffness = 0.05;  // Flanagan-Belytschko stiffness coefficient (x shear modulus; no effect without strength)
+  // Subzonal pressures (Caramana & Shashkov 1998), in bodies without strength: each corner region of
+  // the median mesh keeps its own mass, and one denser than its zone pushes with
+  // dp = subzonal_pressure x c^2 (rho_corner - rho_zone). 0: off.
+  double subzonal_pressure = 0.0;
 };
 
 enum class AxisymmetricForm {

@@ -164,6 +164,7 @@ struct ForceSettings {
   double stiffness_modulus = 0.0;  // k_s mu
   double cq_s = 0.0;               // c_q x the EOS shock slope
   double cl = 0.0;                 // c_l
+  double subzonal = 0.0;           // subzonal pressure coefficient; 0: off
 };
 
 // Reads zones.pressure; writes the batch's dA/dx_p, area and pressure, and for the edge viscosity
@@ -225,6 +226,54 @@ template <GeometryKind G>
     }
   }
   viscous_power = power;
+}
+
+// Subzonal pressure forces (Caramana & Shashkov, J. Comput. Phys. 142, 1998), added to the batch's
+// forces. Corner p's region of the median mesh, S_p = (x_p, (x_p + x_p+1)/2, centre, (x_p-1 + x_p)/2),
+// keeps its initial mass m_p (zones.subzone_mass); its density m_p / V(S_p) differs from the zone's
+// when the zone distorts, and the difference dp_p = k c^2 (rho_p - rho) acts on the nodes as the
+// pressure of a region does: f_q += dp_p dV(S_p)/dx_q, with V the zone's volume measure (area, or
+// integral of r dA in axisymmetric geometry). These are corner forces like the others, so the
+// compatible update books their work in the zone's internal energy: momentum and energy stay exact.
+// For motion that keeps the regions' volume ratios (affine motion; in RZ also a uniform scaling about
+// the origin) every dp_p is zero.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
+                                                         const ForceSettings settings) {
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    const quad::Corners x = batch.corners(i);
+    const double rho = zones.density[z];
+    const double stiffness = settings.subzonal * zones.sound_speed[z] * zones.sound_speed[z];
+    const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
+    std::array<Vec2, 4> force{};
+    for (int p = 0; p < 4; ++p) {
+      const quad::Corners region = quad::corner_region(x, p);
+      double volume = 0.0;
+      std::array<Vec2, 4> g;  // dV(S_p)/d(region corner j)
+      if constexpr (G == GeometryKind::axisymmetric) {
+        volume = quad::axisymmetric_volume(region);
+        g = quad::axisymmetric_volume_gradient(region);
+      } else {
+        volume = quad::area(region);
+        g = quad::area_gradient(region);
+      }
+      if (!(volume > 0.0)) continue;  // a collapsed region (the axis corner of a degenerate quad)
+      const double dp = stiffness * (subzone_mass[p] / volume - rho);
+      // Region corner j as a combination of the zone's nodes: x_p; (x_p + x_p+1)/2; the centre; (x_p-1 + x_p)/2.
+      const Vec2 quarter = 0.25 * g[2];
+      const int n = quad::next(p), o = quad::next(n), m = quad::prev(p);
+      force[p] += dp * (g[0] + 0.5 * g[1] + quarter + 0.5 * g[3]);
+      force[n] += dp * (0.5 * g[1] + quarter);
+      force[o] += dp * quarter;
+      force[m] += dp * (quarter + 0.5 * g[3]);
+    }
+    for (int p = 0; p < 4; ++p) {
+      batch.fx[p][i] += force[p].x;
+      batch.fy[p][i] += force[p].y;
+    }
+  }
 }
 
 // Stress corner forces, sigma = s - p I, into the batch's forces (and mean radius V/A); one loop per
@@ -454,6 +503,8 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
   settings.hourglass_stiff = settings.stiffness_modulus != 0.0;
   settings.cq_s = params.viscosity.quadratic * params.shock_slope;
   settings.cl = params.viscosity.linear;
+  // Subzonal pressures: bodies without strength, compatible forms only.
+  settings.subzonal = params.shear_modulus == 0.0 && !settings.area_weighted ? params.hourglass.subzonal_pressure : 0.0;
   ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
@@ -468,6 +519,7 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
     } else {
       detail::batch_stress_forces<G, false>(batch, count, first, zones);
     }
+    if (settings.subzonal > 0.0) detail::batch_subzonal_pressure<G>(batch, count, first, zones, settings);
     if constexpr (Visc == ViscosityModel::edge) {
       detail::batch_edge_viscosity<G>(batch, count, first, mesh, zone_begin, params, settings, area_weighted_arrays,
                                       shared_limiters, power.viscous);

@@ -58,6 +58,7 @@ struct ZoneFields {
   std::vector<ZoneCorners> neighbour;            // zone across each edge (p, p+1); -1 on a boundary
   bool neighbours_built = false;                 // set by build_edge_continuations, cleared by resize
   std::vector<double> corner_mass;               // 4 per zone: the zone's share of each corner node's mass
+  std::vector<double> subzone_mass;              // 4 per zone: the mass of each corner's median-mesh region
   // Fracture (docs/theory.md §2 step 6): permanent damage, when and why it started.
   std::vector<std::uint8_t> damaged;             // 0 intact, 1 damaged
   std::vector<double> damage_time;               // s; -1 while intact
@@ -117,6 +118,7 @@ void for_each_zone_field(Zones& z, F&& f) {
   f("edge_after", z.edge_after, 1, none);
   f("neighbour", z.neighbour, 1, none);
   f("corner_mass", z.corner_mass, 4, 0.0);
+  f("subzone_mass", z.subzone_mass, 4, 0.0);
   f("damaged", z.damaged, 1, std::uint8_t{0});
   f("damage_time", z.damage_time, 1, -1.0);
   f("damage_criterion", z.damage_criterion, 1, std::uint8_t{0});
@@ -128,7 +130,7 @@ void for_each_zone_field(Zones& z, F&& f) {
 // stops here (every member is a std::vector of 24 bytes, plus ZoneFields' neighbours_built flag).
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(NodeFields) == 14 * 24,
               "NodeFields changed: add the field to for_each_node_field");
-static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 29 * 24 + 8,
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 30 * 24 + 8,
               "ZoneFields changed: add the field to for_each_zone_field");
 
 struct Mesh {
