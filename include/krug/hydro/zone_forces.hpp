@@ -75,6 +75,17 @@ namespace detail {
           -(mean_radius * (sxy * b.x + (syy - stt) * b.y) + stt * c.y)};
 }
 
+// The same force with the r-weighted in-plane operator B_p = integral of grad N_p r dA
+// (quad::axisymmetric_gradient_integrals) in place of (V/A) b_p: f_p = -[(sigma_2D - sigma_tt I) B_p + sigma_tt c_p].
+// The pressure part (sigma_2D - sigma_tt I = 0) is the same; the deviatoric part is then consistent with
+// the nodal masses integral N_p r dA on every row, the axis row included (where (V/A) b_p gives 1.5 x
+// the axial force for a stress linear in z).
+[[gnu::always_inline]] inline Vec2 consistent_control_volume_force(double sxx, double syy, double sxy, double stt,
+                                                                   Vec2 in_plane, Vec2 c) {
+  return {-((sxx - stt) * in_plane.x + sxy * in_plane.y + stt * c.x),
+          -(sxy * in_plane.x + (syy - stt) * in_plane.y + stt * c.y)};
+}
+
 // Limiter of the edge viscosity: ratios of the velocity gradient along the continuing edges to the
 // gradient along the edge itself, psi = max(0, min(1, (r_b + r_a)/2, 2 r_b, 2 r_a)).
 inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index b, Index after,
@@ -165,6 +176,7 @@ struct ForceSettings {
   double cq_s = 0.0;               // c_q x the EOS shock slope
   double cl = 0.0;                 // c_l
   double subzonal = 0.0;           // subzonal pressure coefficient; 0: off
+  bool consistent_deviator = false;  // RZ control volume with strength: the r-weighted operator B_p
 };
 
 // Reads zones.pressure; writes the batch's dA/dx_p, area and pressure, and for the edge viscosity
@@ -279,7 +291,7 @@ template <GeometryKind G>
 // Stress corner forces, sigma = s - p I, into the batch's forces (and mean radius V/A); one loop per
 // form, so that each has no branch. Area-weighted RZ form: also the control-volume forces (work_x/y)
 // and the area-weighted stress forces alone (planar_x/y).
-template <GeometryKind G, bool AreaWeighted>
+template <GeometryKind G, bool AreaWeighted, bool ConsistentDeviator = false>
 [[gnu::noinline]] inline void batch_stress_forces(ZoneBatch& batch, int count, Index first, const ZoneFields& zones) {
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
@@ -308,7 +320,15 @@ template <GeometryKind G, bool AreaWeighted>
           batch.work_x[p][i] = work.x;
           batch.work_y[p][i] = work.y;
         }
-      } else {
+      } else if constexpr (ConsistentDeviator) {
+        const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
+        const std::array<Vec2, 4> in_plane = quad::axisymmetric_gradient_integrals(x);
+        for (int p = 0; p < 4; ++p) {
+          const Vec2 f = consistent_control_volume_force(sxx, syy, sxy, stt, in_plane[p], volume_gradient[p]);
+          batch.fx[p][i] = f.x;
+          batch.fy[p][i] = f.y;
+        }
+      } else {  // no deviator (a gas): only the pressure part, sigma_tt c_p, which both operators share
         const std::array<Vec2, 4> volume_gradient = quad::axisymmetric_volume_gradient(x);
         for (int p = 0; p < 4; ++p) {
           const Vec2 f = control_volume_force(sxx, syy, sxy, stt, mean_radius, b[p], volume_gradient[p]);
@@ -504,6 +524,7 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
   settings.cq_s = params.viscosity.quadratic * params.shock_slope;
   settings.cl = params.viscosity.linear;
   // Subzonal pressures: bodies without strength, compatible forms only.
+  settings.consistent_deviator = G == GeometryKind::axisymmetric && !settings.area_weighted && params.shear_modulus != 0.0;
   settings.subzonal = params.shear_modulus == 0.0 && !settings.area_weighted ? params.hourglass.subzonal_pressure : 0.0;
   ZoneFields& zones = mesh.zones;
   ArtificialPower power;
@@ -516,6 +537,8 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
     if constexpr (Visc == ViscosityModel::scalar) detail::batch_scalar_viscosity<G>(batch, count, first, zones, settings, power.viscous);
     if (settings.area_weighted) {
       detail::batch_stress_forces<G, true>(batch, count, first, zones);
+    } else if (settings.consistent_deviator) {
+      detail::batch_stress_forces<G, false, true>(batch, count, first, zones);
     } else {
       detail::batch_stress_forces<G, false>(batch, count, first, zones);
     }

@@ -54,10 +54,26 @@ template <GeometryKind G>
   rate.xy = 0.5 * (dux_dy + duy_dx) * inv_area;
   rate.zz = 0.0;
   if constexpr (G == GeometryKind::axisymmetric) {
+    // The adjoint of the deviatoric corner force: the velocity gradient (1/V) sum_p u_p (x) B_p with
+    // the r-weighted operator B_p, and the hoop rate (dV/dt)/V minus its trace.
+    const std::array<Vec2, 4> in_plane = quad::axisymmetric_gradient_integrals(mid);
     const std::array<Vec2, 4> c = quad::axisymmetric_volume_gradient(mid);
     double volume_rate = 0.0;
-    for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], c[p]);
-    rate.zz = volume_rate / quad::axisymmetric_volume(mid) - (dux_dx + duy_dy) * inv_area;
+    double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      volume_rate += dot(u[p], c[p]);
+      gxx += u[p].x * in_plane[p].x;
+      gxy += u[p].x * in_plane[p].y;
+      gyx += u[p].y * in_plane[p].x;
+      gyy += u[p].y * in_plane[p].y;
+    }
+    const double inv_volume = 1.0 / quad::axisymmetric_volume(mid);
+    rate.xx = gxx * inv_volume;
+    rate.yy = gyy * inv_volume;
+    rate.xy = 0.5 * (gxy + gyx) * inv_volume;
+    rate.zz = volume_rate * inv_volume - (gxx + gyy) * inv_volume;
+    spin = in_plane_spin(gyx * inv_volume, gxy * inv_volume);
+    return;
   }
   spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
 }

@@ -103,6 +103,33 @@ inline std::array<double, 4> axisymmetric_corner_volumes(const Corners& c) {
   return volumes;
 }
 
+// The r-weighted gradients of the bilinear shape functions, B_p = integral of grad N_p r dA over the
+// quad: the axisymmetric in-plane operator with the quadrature of the consistent masses above. The
+// deviatoric corner force is -(s_2D - s_tt I) B_p, and (1/V) sum_p u_p (x) B_p its adjoint velocity
+// gradient. They sum to zero, and sum_p x_p (x) B_p = V I, so a linear velocity field is exact.
+// Closed form, by the divergence theorem, grad(N_p r) = r grad N_p + N_p e_r:
+//   B_p = (boundary integral of N_p r n ds) - e_r (integral of N_p dA).
+// On an edge (a, b) with outward normal-times-length n_ab = (y_b - y_a, x_a - x_b), N_p and r are
+// linear: the edge gives node a (r_a/3 + r_b/6) n_ab and node b (r_a/6 + r_b/3) n_ab. And for the
+// bilinear N_p, whose Jacobian is linear, integral of N_p dA = (A + T_p)/6 with T_p the area of the
+// triangle (x_p-1, x_p, x_p+1).
+inline std::array<Vec2, 4> axisymmetric_gradient_integrals(const Corners& c) {
+  std::array<Vec2, 4> integrals{};
+  for (int a = 0; a < 4; ++a) {
+    const int b = next(a);
+    const Vec2 normal{c[b].y - c[a].y, c[a].x - c[b].x};
+    const double ra = c[a].y, rb = c[b].y;
+    integrals[a] += ((ra * 2.0 + rb) * (1.0 / 6.0)) * normal;
+    integrals[b] += ((ra + rb * 2.0) * (1.0 / 6.0)) * normal;
+  }
+  const double zone_area = area(c);
+  for (int p = 0; p < 4; ++p) {
+    const double corner_triangle = 0.5 * cross(c[next(p)] - c[p], c[prev(p)] - c[p]);
+    integrals[p].y -= (zone_area + corner_triangle) * (1.0 / 6.0);
+  }
+  return integrals;
+}
+
 // Smallest altitude, the length scale of the CFL condition: area over the longest edge
 // (min(h, w) for an h x w rectangle, -> 0 for a sliver).
 inline double smallest_altitude(const Corners& c, double zone_area) {
