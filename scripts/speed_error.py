@@ -4,6 +4,10 @@ and prints a Markdown table (problem, zones, cycles, CPU seconds, L1 density err
 for docs/performance.md, and with --plot FILE a log-log plot of error against seconds (matplotlib).
 
     scripts/speed_error.py [--tests build/tests/krug_convergence_tests] [--scale 1] [--plot speed_error.png]
+                           [--cfl C] [--growth G]
+
+--cfl and --growth override every run's controls.cfl and controls.time_step_growth (to compare the
+time-step control against accuracy side by side).
 
 The seconds are the runs' own clock (one thread); run on a quiet machine.
 """
@@ -20,8 +24,14 @@ def main():
     parser.add_argument("--tests", default=os.path.join(here, "..", "build", "tests", "krug_convergence_tests"))
     parser.add_argument("--scale", default="1")
     parser.add_argument("--plot")
+    parser.add_argument("--cfl")
+    parser.add_argument("--growth")
     args = parser.parse_args()
     env = dict(os.environ, KRUG_VERIFICATION_REPORT="1", KRUG_CONVERGENCE_SCALE=args.scale)
+    if args.cfl:
+        env["KRUG_STUDY_CFL"] = args.cfl
+    if args.growth:
+        env["KRUG_STUDY_GROWTH"] = args.growth
     run = subprocess.run([args.tests, "[speed_error]"], env=env, capture_output=True, text=True)
     rows = []
     for line in run.stdout.splitlines():

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -52,7 +53,14 @@ void study(const Problem& p) {
                                                   {zones(p.across, -2).from, "\"zones\": -2"},
                                                   {"\"zones\": -1", zones(0, along).to},
                                                   {"\"zones\": -2", zones(0, across).to}};
-    const io::Scenario scenario = load_example(p.file, substitutions);
+    io::Scenario scenario = load_example(p.file, substitutions);
+    // Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
+    if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
+      scenario.setup.controls.cfl = std::stod(cfl);
+    }
+    if (const char* growth = std::getenv("KRUG_STUDY_GROWTH"); growth != nullptr && *growth != '\0') {
+      scenario.setup.controls.time_step_growth = std::stod(growth);
+    }
     const Run run = run_to_end(scenario);
     INFO(p.name << " at " << along << " x " << across << ": " << run.failure);
     REQUIRE(run.completed());
