@@ -230,6 +230,7 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     c.viscosity.quadratic = v->number("quadratic", c.viscosity.quadratic, Range::non_negative());
     c.viscosity.linear = v->number("linear", c.viscosity.linear, Range::non_negative());
     c.viscosity.limiter = v->flag("limiter", c.viscosity.limiter);
+    c.viscosity.heat_conduction = v->number("heat_conduction", c.viscosity.heat_conduction, Range::between(0.0, 4.0));
     v->finish();
   }
   {

@@ -8,6 +8,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/solver/parallel.hpp"
+#include "krug/hydro/heat_conduction.hpp"
 #include "krug/hydro/zone_forces.hpp"
 #include "krug/hydro/zone_update.hpp"
 
@@ -210,6 +211,7 @@ void Simulation::step() {
   solve_contact_reactions();
   correct_and_move();
   update_zones();
+  conduct_heat();
   if (fracture_enabled_) {
     evaluate_fracture();
     convert_fractured_zones();
@@ -418,6 +420,29 @@ void Simulation::update_zones() {
   }
   state_.ledger.energy.internal = internal;
   measure_ledger();
+}
+
+void Simulation::conduct_heat() {
+  const double coefficient = controls_.viscosity.heat_conduction;
+  if (!(coefficient > 0.0)) return;
+  ZoneFields& zones = state_.mesh.zones;
+  heat_change_.assign(static_cast<std::size_t>(zones.size()), 0.0);
+  for (const Body& body : bodies_) {
+    const Material& material = materials_.at(static_cast<std::size_t>(body.material));
+    if (material.shear_modulus() != 0.0) continue;  // bodies without strength only
+    exchange_heat(state_.mesh, body.zone_begin, body.zone_end, coefficient, state_.time_step_next, geometry_,
+                  heat_change_);
+    std::visit([&](const auto& eos) {
+      for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+        const double change = heat_change_[static_cast<std::size_t>(z)];
+        if (change == 0.0) continue;
+        zones.specific_energy[z] += change / zones.mass[z];
+        const double rho = zones.density[z], e = zones.specific_energy[z];
+        zones.pressure[z] = eos.pressure(rho, e);
+        zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]), 0.0));
+      }
+    }, material.eos);
+  }
 }
 
 void Simulation::choose_time_step() {

@@ -145,3 +145,26 @@ TEST_CASE("Sedov spherical on a rectangular RZ mesh reaches t = 1 with subzonal 
     if (ray > 0.0) CHECK(std::abs(shock - 1.0) < 2.0 * zone);
   }
 }
+
+// F7 cured by the two options together: subzonal pressures 0.5 and artificial heat conduction 2
+// (docs/verification.md, F7). Measured: 50 x 50 reaches t = 1 in 307 cycles, shock +0.2 to +1.3 zones
+// on every ray, the axis ray included; 100 x 100 in 883 cycles, +0.4 to +1.4 zones.
+TEST_CASE("Sedov spherical on a rectangular RZ mesh with subzonal pressures and heat conduction: shock on every ray",
+          "[sedov][axisymmetric][subzonal]") {
+  io::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
+  scenario.setup.controls.viscosity.heat_conduction = 2.0;
+  const double zone = 1.2 / 50.0;
+  const Run run = run_to_end(scenario);
+  INFO(run.failure);
+  REQUIRE(run.completed());
+  CHECK(run.simulation.ledger().relative_energy_drift() < 1e-12);
+  for (const double ray : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
+    const double shock = shock_on_ray(run.simulation, ray);
+    INFO("ray " << ray << " degrees: shock at " << shock);
+    report("Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5 + heat 2",
+           format_number("shock r on the %.0f degree ray", ray), "1.000", shock,
+           format_number("%+.1f zones", (shock - 1.0) / zone), run.simulation.mesh().zones.size(), run.seconds);
+    CHECK(std::abs(shock - 1.0) < 2.0 * zone);
+  }
+}

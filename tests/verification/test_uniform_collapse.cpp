@@ -91,11 +91,13 @@ TEST_CASE("Uniform collapse of a sphere on an RZ polar mesh: exact coasting moti
 }
 
 // Subzonal pressures (controls.hourglass.subzonal_pressure) vanish for motion that keeps the corner
-// regions' volume ratios: a uniform collapse (a scaling about the origin) stays exact with them on.
-TEST_CASE("Uniform collapse with subzonal pressures on: still exact", "[uniform_collapse][subzonal]") {
+// regions' volume ratios, and heat conduction where the energy is uniform: a uniform collapse (a
+// scaling about the origin) stays exact with both on.
+TEST_CASE("Uniform collapse with subzonal pressures and heat conduction on: still exact", "[uniform_collapse][subzonal]") {
   for (const char* file : {"uniform_collapse_cylindrical.json", "uniform_collapse_spherical.json"}) {
     io::Scenario scenario = load_example(file);
     scenario.setup.controls.hourglass.subzonal_pressure = 1.0;
+    scenario.setup.controls.viscosity.heat_conduction = 2.0;  // uniform e: nothing to conduct
     const bool spherical = std::string(file) == "uniform_collapse_spherical.json";
     check_collapse(spherical ? "Uniform collapse, sphere (RZ polar), subzonal pressures"
                              : "Uniform collapse, cylinder (XY polar), subzonal pressures",

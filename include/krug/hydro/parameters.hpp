@@ -16,6 +16,8 @@ struct ViscosityParams {
   double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
   double linear = 0.5;     // c_l, multiplies the sound speed
   bool limiter = true;     // edge model: switch off for velocity fields linear along the edge
+  double heat_conduction = 0.0;  // Noh's artificial heat flux coefficient (heat_conduction.hpp), bodies
+                                 // without strength; 0: off
 };
 
 struct HourglassParams {

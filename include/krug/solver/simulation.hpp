@@ -162,6 +162,7 @@ class Simulation {
                                   //    u^{n+1/2} = u* + dt^n R / M (nothing without contact)
   void correct_and_move();        // 4. the contact and boundary work of R; x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
+  void conduct_heat();            // 5b. artificial heat conduction between zones (if on)
   void evaluate_fracture();       // 6. criteria (1) on intact zones; damage is permanent
   void convert_fractured_zones(); // 7. fully fractured surface zones -> particles (one layer per step)
   void choose_time_step();        // 8. dt^{n+3/2}
@@ -190,6 +191,7 @@ class Simulation {
   contact::ContactStatistics last_contact_;
   Controls controls_;
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
+  std::vector<double> heat_change_;          // per zone, the artificial heat conduction of the step (scratch)
   std::vector<double> area_weighted_booking_;  // its viscous/hourglass work weight: s_p, 0 on the axis
   std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
   NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
