@@ -87,8 +87,9 @@ TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, area-weighted form", "
   check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, area weighted)", 3, Coordinate::radius});
 }
 
-// Known failure F7 (docs/verification.md): with the edge viscosity both forms stop near the origin
-// (t = 0.226 and 0.176).
+// Known failure F7 (docs/verification.md): with the default controls and the edge viscosity both forms
+// stop near the origin (t = 0.226 and 0.176). With heat conduction and subzonal pressures (opt-in) the
+// control-volume run passes every criterion: see the last test case of this file.
 TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end (robustness)", "[noh][axisymmetric][!mayfail]") {
   // verification.md E2: the rectangular mesh only for robustness: it must reach t = 0.6 without
   // tangling or a collapsing time step; its accuracy is not judged.
