@@ -16,6 +16,15 @@ namespace krug {
 
 namespace {
 
+// A zone's pressure and stress-wave speed (bulk, plus 4 mu / 3 rho with a shear modulus mu) from the
+// EOS at its density and specific energy.
+template <class Eos>
+void evaluate_eos(const Eos& eos, double mu, ZoneFields& zones, Index z) {
+  const double rho = zones.density[z], e = zones.specific_energy[z];
+  zones.pressure[z] = eos.pressure(rho, e);
+  zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]) + 4.0 * mu / (3.0 * rho), 0.0));
+}
+
 // Picks the compile-time variant of the force kernel once per body; its blocks of zones share the threads,
 // and their artificial powers are added in block order.
 ArtificialPower dispatch_zone_forces(GeometryKind geometry, ViscosityModel model, int threads, Mesh& mesh,
@@ -154,10 +163,8 @@ void Simulation::initialise() {
     const double mu = material.shear_modulus();
     std::visit([&](const auto& eos) {
       for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+        evaluate_eos(eos, mu, zones, z);
         const double rho = zones.density[z], e = zones.specific_energy[z];
-        zones.pressure[z] = eos.pressure(rho, e);
-        zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]) +
-                                                  4.0 * mu / (3.0 * rho), 0.0));
         if (!std::isfinite(e) || !std::isfinite(zones.pressure[z]) || !std::isfinite(zones.sound_speed[z])) {
           throw InputError(fmt::format("body '{}': zone {} starts with a non-finite state (rho {}, e {}, p {})",
                                        body.name, z - body.zone_begin, rho, e, zones.pressure[z]));
@@ -437,9 +444,7 @@ void Simulation::conduct_heat() {
         const double change = heat_change_[static_cast<std::size_t>(z)];
         if (change == 0.0) continue;
         zones.specific_energy[z] += change / zones.mass[z];
-        const double rho = zones.density[z], e = zones.specific_energy[z];
-        zones.pressure[z] = eos.pressure(rho, e);
-        zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]), 0.0));
+        evaluate_eos(eos, 0.0, zones, z);
       }
     }, material.eos);
   }

@@ -32,15 +32,15 @@ inline void exchange_heat(const Mesh& mesh, Index zone_begin, Index zone_end, do
     double conductance;  // kg/s: heat per unit of specific-energy difference per unit time
   };
   std::vector<Face> faces;
-  std::vector<double> total(static_cast<std::size_t>(zone_end - zone_begin), 0.0);
-  auto centre = [&](Index z, Vec2& x, Vec2& u) {
-    x = {};
-    u = {};
+  const std::size_t count = static_cast<std::size_t>(zone_end - zone_begin);
+  std::vector<double> total(count, 0.0);
+  std::vector<Vec2> centre(count), velocity(count);  // each zone's mean corner position and velocity
+  for (Index z = zone_begin; z < zone_end; ++z) {
     for (Index n : zones.corners[z]) {
-      x += 0.25 * nodes.position(n);
-      u += 0.25 * nodes.velocity(n);
+      centre[static_cast<std::size_t>(z - zone_begin)] += 0.25 * nodes.position(n);
+      velocity[static_cast<std::size_t>(z - zone_begin)] += 0.25 * nodes.velocity(n);
     }
-  };
+  }
   for (Index z = zone_begin; z < zone_end; ++z) {
     if (!zones.active[z]) continue;
     const ZoneCorners& n = zones.corners[z];
@@ -49,13 +49,11 @@ inline void exchange_heat(const Mesh& mesh, Index zone_begin, Index zone_end, do
       if (o <= z || o >= zone_end || !zones.active[o]) continue;  // each face once, inside the body
       const Vec2 a = nodes.position(n[k]), b = nodes.position(n[(k + 1) & 3]);
       const double face = norm(b - a) * (axisymmetric ? 0.5 * (a.y + b.y) : 1.0);
-      Vec2 xz, uz, xo, uo;
-      centre(z, xz, uz);
-      centre(o, xo, uo);
-      const Vec2 d = xo - xz;
+      const std::size_t iz = static_cast<std::size_t>(z - zone_begin), io = static_cast<std::size_t>(o - zone_begin);
+      const Vec2 d = centre[io] - centre[iz];
       const double distance = norm(d);
       if (!(distance > 0.0) || !(face > 0.0)) continue;
-      const double closing = -dot(uo - uz, d) / distance;
+      const double closing = -dot(velocity[io] - velocity[iz], d) / distance;
       const double rho = 0.5 * (zones.density[z] + zones.density[o]);
       const double c = 0.5 * (zones.sound_speed[z] + zones.sound_speed[o]);
       const double conductance = coefficient * rho * (c + std::max(closing, 0.0)) * face;

@@ -259,9 +259,10 @@ template <GeometryKind G>
     const double rho = zones.density[z];
     const double stiffness = settings.subzonal * zones.sound_speed[z] * zones.sound_speed[z];
     const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
+    const Vec2 middle = quad::centre(x);
     std::array<Vec2, 4> force{};
     for (int p = 0; p < 4; ++p) {
-      const quad::Corners region = quad::corner_region(x, p);
+      const quad::Corners region = quad::corner_region(x, p, middle);
       double volume = 0.0;
       std::array<Vec2, 4> g;  // dV(S_p)/d(region corner j)
       if constexpr (G == GeometryKind::axisymmetric) {

@@ -39,19 +39,6 @@ template <GeometryKind G>
                            StrainRate& rate, double& spin) {
   quad::Corners mid;
   for (int p = 0; p < 4; ++p) mid[p] = x_new[p] - (0.5 * dt) * u[p];
-  const double area = quad::area(mid);
-  const std::array<Vec2, 4> b = quad::area_gradient(mid);
-  double dux_dx = 0.0, dux_dy = 0.0, duy_dx = 0.0, duy_dy = 0.0;
-  for (int p = 0; p < 4; ++p) {
-    dux_dx += u[p].x * b[p].x;
-    dux_dy += u[p].x * b[p].y;
-    duy_dx += u[p].y * b[p].x;
-    duy_dy += u[p].y * b[p].y;
-  }
-  const double inv_area = 1.0 / area;
-  rate.xx = dux_dx * inv_area;
-  rate.yy = duy_dy * inv_area;
-  rate.xy = 0.5 * (dux_dy + duy_dx) * inv_area;
   rate.zz = 0.0;
   if constexpr (G == GeometryKind::axisymmetric) {
     // The adjoint of the deviatoric corner force: the velocity gradient (1/V) sum_p u_p (x) B_p with
@@ -73,9 +60,22 @@ template <GeometryKind G>
     rate.xy = 0.5 * (gxy + gyx) * inv_volume;
     rate.zz = volume_rate * inv_volume - (gxx + gyy) * inv_volume;
     spin = in_plane_spin(gyx * inv_volume, gxy * inv_volume);
-    return;
+  } else {
+    const double area = quad::area(mid);
+    const std::array<Vec2, 4> b = quad::area_gradient(mid);
+    double dux_dx = 0.0, dux_dy = 0.0, duy_dx = 0.0, duy_dy = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      dux_dx += u[p].x * b[p].x;
+      dux_dy += u[p].x * b[p].y;
+      duy_dx += u[p].y * b[p].x;
+      duy_dy += u[p].y * b[p].y;
+    }
+    const double inv_area = 1.0 / area;
+    rate.xx = dux_dx * inv_area;
+    rate.yy = duy_dy * inv_area;
+    rate.xy = 0.5 * (dux_dy + duy_dx) * inv_area;
+    spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
   }
-  spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
 }
 
 namespace detail {

@@ -70,10 +70,10 @@ inline Vec2 centre(const Corners& c) { return 0.25 * (c[0] + c[1] + c[2] + c[3])
 
 // The corner region of p on the median mesh: p, the midpoint of edge (p, p+1), the centre, the
 // midpoint of edge (p-1, p). The four corner regions tile the zone exactly.
-inline Corners corner_region(const Corners& c, int p) {
-  const Vec2 centre_point = centre(c);
+inline Corners corner_region(const Corners& c, int p, Vec2 centre_point) {
   return {c[p], 0.5 * (c[p] + c[next(p)]), centre_point, 0.5 * (c[prev(p)] + c[p])};
 }
+inline Corners corner_region(const Corners& c, int p) { return corner_region(c, p, centre(c)); }
 
 // Consistent r-weighted corner masses per unit density: integral of N_p r dA over the quad with the
 // bilinear shape functions N_p, by 2 x 2 Gauss quadrature (exact: N_p r J is at most cubic in each
