@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -125,7 +126,7 @@ void set_initial_fields(const InitialState& initial, const Body& body, GeometryK
 void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::Patch& patch,
                     const std::vector<std::pair<std::string, std::string>>& sides, const std::string& body_name,
                     GeometryKind geometry, Mesh& mesh, std::map<Index, NodeConstraint>& constraints,
-                    const std::string& where) {
+                    std::map<Index, std::array<std::string, 2>>& held_by, const std::string& where) {
   for (const SideBoundary& b : boundary) {
     const auto found = std::find_if(sides.begin(), sides.end(), [&](const auto& s) { return s.first == b.side; });
     if (found == sides.end()) {
@@ -134,11 +135,16 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
       fail(where + ".boundary." + b.side, fmt::format("body \"{}\" has no side of that name; its sides: {}", body_name, valid));
     }
     const std::vector<Index>& nodes = patch.sides.at(found->second);
+    static constexpr const char* condition_names[] = {"free", "symmetry", "slip", "fixed", "velocity"};
+    const std::string label =
+        fmt::format("{}.boundary.{} ({})", where, b.side, condition_names[static_cast<int>(b.condition)]);
     auto constrain = [&](Index n, bool fx, bool fy) {
       NodeConstraint& c = constraints[n];
       c.node = n;
       c.fix_x = c.fix_x || fx;
       c.fix_y = c.fix_y || fy;
+      if (fx) held_by[n][0] = label;
+      if (fy) held_by[n][1] = label;
     };
     switch (b.condition) {
       case SideCondition::free:
@@ -177,6 +183,61 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
   }
 }
 
+// Two bodies of a contact pair that touch where both hold the same velocity component, at values
+// that drive them into each other, cannot be kept apart: contact moves neither held node, so the
+// bodies would pass through each other (or, where the held nodes belong to thin zones, tangle them).
+// Such a scenario is refused, naming both conditions.
+void check_held_contact(const SimulationSetup& setup, const std::map<Index, NodeConstraint>& constraints,
+                        const std::map<Index, std::array<std::string, 2>>& held_by, GeometryKind geometry) {
+  const Mesh& mesh = setup.mesh;
+  // Each held node's outward direction: from the mean centre of its zones to the node.
+  std::map<Index, Vec2> centre_sum;
+  std::map<Index, int> centre_count;
+  for (Index z = 0; z < mesh.zones.size(); ++z) {
+    for (Index n : mesh.zones.corners[z]) {
+      if (!constraints.contains(n)) continue;
+      centre_sum[n] += 0.25 * (mesh.nodes.position(mesh.zones.corners[z][0]) + mesh.nodes.position(mesh.zones.corners[z][1]) +
+                               mesh.nodes.position(mesh.zones.corners[z][2]) + mesh.nodes.position(mesh.zones.corners[z][3]));
+      ++centre_count[n];
+    }
+  }
+  auto body_of = [&](Index n) {
+    for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+      if (n >= setup.bodies[i].node_begin && n < setup.bodies[i].node_end) return i;
+    }
+    return setup.bodies.size();
+  };
+  for (std::size_t k = 0; k < setup.contact.pairs.size(); ++k) {
+    const contact::BodyPair& pair = setup.contact.pairs[k];
+    if (pair.first == pair.second) continue;
+    const Body& first = setup.bodies[static_cast<std::size_t>(pair.first)];
+    for (const auto& [a, ca] : constraints) {
+      if (body_of(a) != static_cast<std::size_t>(pair.first)) continue;
+      const Vec2 pa = mesh.nodes.position(a);
+      const Vec2 outward = pa - (1.0 / centre_count[a]) * centre_sum[a];
+      const double reach = 1e-6 * norm(outward);  // "touching": within a millionth of the zone's size
+      for (const auto& [b, cb] : constraints) {
+        if (body_of(b) != static_cast<std::size_t>(pair.second)) continue;
+        if (norm(mesh.nodes.position(b) - pa) > reach) continue;
+        for (int c = 0; c < 2; ++c) {
+          if (!(c == 0 ? ca.fix_x && cb.fix_x : ca.fix_y && cb.fix_y)) continue;
+          const double va = c == 0 ? mesh.nodes.u[a] : mesh.nodes.v[a];
+          const double vb = c == 0 ? mesh.nodes.u[b] : mesh.nodes.v[b];
+          const double closing = (va - vb) * (c == 0 ? outward.x : outward.y);
+          if (!(closing > 0.0)) continue;
+          const Body& second = setup.bodies[static_cast<std::size_t>(pair.second)];
+          fail(fmt::format("contact.pairs[{}]", k), fmt::format(
+              "\"{}\" and \"{}\" touch at ({:.6g}, {:.6g}) m, where {} holds v_{} = {:g} m/s and {} "
+              "holds v_{} = {:g} m/s: the held nodes close at {:g} m/s and contact cannot move either, so the bodies "
+              "would pass through each other; free one of the two conditions, or leave a gap",
+              first.name, second.name, pa.x, pa.y, held_by.at(a)[static_cast<std::size_t>(c)], axis_name(geometry, c), va,
+              held_by.at(b)[static_cast<std::size_t>(c)], axis_name(geometry, c), vb, std::abs(va - vb)));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> side_names(const MeshDescription& mesh, GeometryKind geometry) {
@@ -199,6 +260,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
   setup.materials = scene.materials;
   setup.fracture = scene.fracture;
   std::map<Index, NodeConstraint> constraints;
+  std::map<Index, std::array<std::string, 2>> held_by;  // the boundary condition that holds each component
   std::vector<std::string> where;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDescription& description = scene.bodies[i];
@@ -251,7 +313,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     }
     set_initial_fields(description.initial, body, scene.geometry, setup.mesh, where.back());
     apply_boundary(description.boundary, patch, side_names(description.mesh, scene.geometry), body.name, scene.geometry,
-                   setup.mesh, constraints, where.back());
+                   setup.mesh, constraints, held_by, where.back());
     setup.bodies.push_back(body);
   }
   // Bodies may touch but not overlap: a node of one inside a zone of another is an input error.
@@ -272,6 +334,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
   }
   for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
   setup.contact = scene.contact;
+  check_held_contact(setup, constraints, held_by, scene.geometry);
   setup.controls = scene.controls;
   return setup;
 }

@@ -213,15 +213,23 @@ void Simulation::initialise() {
 }
 
 void Simulation::step() {
-  compute_forces();
-  predict_velocities();
-  solve_contact_reactions();
-  correct_and_move();
-  update_zones();
-  conduct_heat();
-  if (fracture_enabled_) {
-    evaluate_fracture();
-    convert_fractured_zones();
+  // A failure part-way through the step would leave the ledger holding some of this step's work and
+  // none of its energies; it goes back to the last completed cycle's, which closes.
+  const Ledger at_start = state_.ledger;
+  try {
+    compute_forces();
+    predict_velocities();
+    solve_contact_reactions();
+    correct_and_move();
+    update_zones();
+    conduct_heat();
+    if (fracture_enabled_) {
+      evaluate_fracture();
+      convert_fractured_zones();
+    }
+  } catch (const NumericalFailure&) {
+    state_.ledger = at_start;
+    throw;
   }
   choose_time_step();
 }

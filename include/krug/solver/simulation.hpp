@@ -106,7 +106,8 @@ class Simulation {
  public:
   explicit Simulation(SimulationSetup setup);
 
-  // One cycle: t^n -> t^{n+1}. Throws NumericalFailure (state left as it was at the failure).
+  // One cycle: t^n -> t^{n+1}. Throws NumericalFailure: the fields are left as they were at the
+  // failure, the ledger as it was at t^n (so that it closes).
   void step();
   bool finished() const;
 
