@@ -71,37 +71,6 @@ PistonLevel piston_level(int n) {
   return level;
 }
 
-// ---- E6 Taylor bar ---------------------------------------------------------------------------------
-
-struct TaylorLevel {
-  int axial = 0, radial = 0;
-  TaylorMeasures measures;
-  double seconds = 0.0;
-  long cycles = 0;
-};
-
-// The uniform family of taylor_bar.json's domain: 7.5 k x k zones (aspect 1.35, as 60 x 8).
-TaylorLevel taylor_level(int radial) {
-  const int axial = radial * 15 / 2;
-  // Replace the graded default mesh by a uniform one of the same bar (the mesh is the only change).
-  const std::string text = read_text(example_path("taylor_bar.json"));
-  const std::size_t begin = text.find("\"mesh\"");
-  const std::size_t end = text.find("\"initial\"");
-  REQUIRE(begin != std::string::npos);
-  REQUIRE(end != std::string::npos);
-  const std::string uniform = R"("mesh": { "type": "rectangle", "z": { "from": 0.0, "to": 0.0324, "zones": )" +
-                              std::to_string(axial) + R"( }, "r": { "from": 0.0, "to": 0.0032, "zones": )" +
-                              std::to_string(radial) + " } },\n      ";
-  const io::Scenario scenario = load_example("taylor_bar.json", {{text.substr(begin, end - begin), uniform}});
-  Run run(scenario.setup);
-  const Body& bar = run.simulation.bodies().front();
-  const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);
-  advance(run);
-  INFO("Taylor bar at " << axial << " x " << radial << " zones: " << run.failure);
-  REQUIRE(run.completed());
-  return {axial, radial, taylor_measures(run.simulation.mesh(), bar, face), run.seconds, run.simulation.cycle()};
-}
-
 }  // namespace
 
 TEST_CASE("Convergence: E3 piston, L1 velocity error and front positions against zones and time",

@@ -1,6 +1,7 @@
 // Speed against error (docs/performance.md, "Speed against error"): the L1 density error against the
 // CPU time of the run for Sod, the cylindrical and spherical Sedov and Noh problems on their
-// verification meshes at four resolutions, each against its exact profile (tests/data/exact). With
+// verification meshes at four resolutions, each against its exact profile (tests/data/exact), and
+// the elastic-plastic Taylor bar's length and impact-face radius against their converged values. With
 // KRUG_VERIFICATION_REPORT set every run prints a row: problem, zones, cycles, seconds, L1 error;
 // scripts/speed_error.py runs this study at full scale and writes the table.
 //
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "test_solid_measures.hpp"
 #include "verification_support.hpp"
 
 using namespace krug;
@@ -31,6 +33,16 @@ double l1_error(const Mesh& mesh, const Body& body, const ExactProfile& exact, C
     }
   }
   return sum / shape.zones_j;
+}
+
+// Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
+void apply_study_controls(io::Scenario& scenario) {
+  if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
+    scenario.setup.controls.cfl = std::stod(cfl);
+  }
+  if (const char* growth = std::getenv("KRUG_STUDY_GROWTH"); growth != nullptr && *growth != '\0') {
+    scenario.setup.controls.time_step_growth = std::stod(growth);
+  }
 }
 
 struct Problem {
@@ -54,13 +66,7 @@ void study(const Problem& p) {
                                                   {"\"zones\": -1", zones(0, along).to},
                                                   {"\"zones\": -2", zones(0, across).to}};
     io::Scenario scenario = load_example(p.file, substitutions);
-    // Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
-    if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
-      scenario.setup.controls.cfl = std::stod(cfl);
-    }
-    if (const char* growth = std::getenv("KRUG_STUDY_GROWTH"); growth != nullptr && *growth != '\0') {
-      scenario.setup.controls.time_step_growth = std::stod(growth);
-    }
+    apply_study_controls(scenario);
     const Run run = run_to_end(scenario);
     INFO(p.name << " at " << along << " x " << across << ": " << run.failure);
     REQUIRE(run.completed());
@@ -92,4 +98,34 @@ TEST_CASE("Speed against error: Sod, Sedov and Noh at four resolutions", "[conve
       {"Noh spherical (RZ polar)", "noh_spherical.json", "noh_spherical_t0.6.csv", Coordinate::radius, 100, 40,
        {0.25, 0.5, 0.75, 1.0}}};
   for (const Problem& p : problems) study(p);
+}
+
+TEST_CASE("Speed against error: the Taylor bar's length and face radius at four resolutions", "[convergence][speed_error]") {
+  // Uniform meshes of k = 4, 8, 16, 32 zones across the radius (7.5 k along the bar) in the full
+  // study, 2, 4, 8, 16 in CI. Error: the relative distance of the length and of the impact-face
+  // radius from the converged values of verification.md E6 (21.43 mm, 7.23 mm), reported as their
+  // mean. Asserted: both fall with every refinement from k = 4 (at k = 2 the bar is two zones wide).
+  const double reference_length = 21.43e-3, reference_radius = 7.23e-3;
+  const int base = std::max(2, static_cast<int>(std::lround(4 * convergence_scale())));
+  std::vector<solid::TaylorLevel> levels;
+  for (const int factor : {1, 2, 4, 8}) {
+    const solid::TaylorLevel level = solid::taylor_level(base * factor, apply_study_controls);
+    const double length_error = std::abs(level.measures.length / reference_length - 1.0);
+    const double radius_error = std::abs(level.measures.face_radius / reference_radius - 1.0);
+    const long zones = static_cast<long>(level.axial) * level.radial;
+    report("speed-error Taylor bar (RZ, elastic-plastic)",
+           format_number("mean relative error of length and face radius, %.0f cycles", static_cast<double>(level.cycles)),
+           "0", 0.5 * (length_error + radius_error),
+           format_number("length %+.4f, ", level.measures.length / reference_length - 1.0) +
+               format_number("radius %+.4f, ", level.measures.face_radius / reference_radius - 1.0) +
+               format_number("%.4g s", level.seconds),
+           zones, level.seconds);
+    if (!levels.empty() && levels.back().radial >= 4) {
+      const solid::TaylorLevel& coarser = levels.back();
+      INFO("k = " << coarser.radial << " -> " << level.radial);
+      CHECK(length_error < std::abs(coarser.measures.length / reference_length - 1.0));
+      CHECK(radius_error < std::abs(coarser.measures.face_radius / reference_radius - 1.0));
+    }
+    levels.push_back(level);
+  }
 }

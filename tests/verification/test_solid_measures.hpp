@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <catch2/catch.hpp>
 
 #include "krug/material/strength.hpp"
 #include "verification_support.hpp"
@@ -221,6 +224,37 @@ inline TaylorMeasures taylor_measures(const Mesh& mesh, const Body& body, const 
   for (Index p = body.node_begin; p < body.node_end; ++p) m.length = std::max(m.length, mesh.nodes.x[p]);
   for (Index p : face) m.face_radius = std::max(m.face_radius, mesh.nodes.y[p]);
   return m;
+}
+
+struct TaylorLevel {
+  int axial = 0, radial = 0;
+  TaylorMeasures measures;
+  double seconds = 0.0;
+  long cycles = 0;
+};
+
+// The uniform family of taylor_bar.json's domain: 7.5 k x k zones (aspect 1.35, as 60 x 8). `adjust`
+// may change the scenario's controls before the run.
+inline TaylorLevel taylor_level(int radial, const std::function<void(io::Scenario&)>& adjust = {}) {
+  const int axial = radial * 15 / 2;
+  // Replace the graded default mesh by a uniform one of the same bar (the mesh is the only change).
+  const std::string text = read_text(example_path("taylor_bar.json"));
+  const std::size_t begin = text.find("\"mesh\"");
+  const std::size_t end = text.find("\"initial\"");
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end != std::string::npos);
+  const std::string uniform = R"("mesh": { "type": "rectangle", "z": { "from": 0.0, "to": 0.0324, "zones": )" +
+                              std::to_string(axial) + R"( }, "r": { "from": 0.0, "to": 0.0032, "zones": )" +
+                              std::to_string(radial) + " } },\n      ";
+  io::Scenario scenario = load_example("taylor_bar.json", {{text.substr(begin, end - begin), uniform}});
+  if (adjust) adjust(scenario);
+  Run run(scenario.setup);
+  const Body& bar = run.simulation.bodies().front();
+  const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);
+  advance(run);
+  INFO("Taylor bar at " << axial << " x " << radial << " zones: " << run.failure);
+  REQUIRE(run.completed());
+  return {axial, radial, taylor_measures(run.simulation.mesh(), bar, face), run.seconds, run.simulation.cycle()};
 }
 
 // Richardson extrapolation from three levels refined by a constant ratio: the observed order
