@@ -196,14 +196,41 @@ int run(const Arguments& args) {
 
 }  // namespace
 
+// The x86-64 level this binary was compiled for (CMake's KRUG_ARCH), and whether this processor runs it.
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
+#define KRUG_INSTRUCTION_SET "x86-64-v4"
+#elif defined(__AVX2__) && defined(__FMA__)
+#define KRUG_INSTRUCTION_SET "x86-64-v3"
+#endif
+#ifdef KRUG_INSTRUCTION_SET
+constexpr const char* instruction_set = KRUG_INSTRUCTION_SET;
+#else
+constexpr const char* instruction_set = nullptr;
+#endif
+
+bool processor_runs_instruction_set() {
+#if defined(KRUG_INSTRUCTION_SET) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  return __builtin_cpu_supports(KRUG_INSTRUCTION_SET);
+#else
+  return true;
+#endif
+}
+
 int main(int argc, char** argv) {
+  if (!processor_runs_instruction_set()) {
+    std::fprintf(stderr,
+                 "krug: this build uses %s instructions, which this processor does not have; rebuild with "
+                 "cmake -DKRUG_ARCH=portable\n",
+                 instruction_set);
+    return 3;
+  }
   std::vector<std::string> words(argv + 1, argv + argc);
   if (words.empty() || words[0] == "--help" || words[0] == "-h") {
     std::fputs(std::string(usage).c_str(), words.empty() ? stderr : stdout);
     return words.empty() ? 2 : 0;
   }
   if (words[0] == "--version") {
-    std::printf("krug %s\n", KRUG_VERSION);
+    std::printf("krug %s (instruction set: %s)\n", KRUG_VERSION, instruction_set != nullptr ? instruction_set : "portable");
     return 0;
   }
   Arguments args;
