@@ -212,7 +212,11 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
   Controls c;
   c.end_time = end_time;
   JsonObject* spec = &controls;
+  // One number sets both (a scenario that names `cfl` alone means every body); `cfl_fluid` then
+  // overrides it for bodies without strength.
+  const bool cfl_given = spec->has("cfl");
   c.cfl = spec->number("cfl", c.cfl, Range{0.0, 1.0, true});
+  c.cfl_fluid = spec->number("cfl_fluid", cfl_given ? c.cfl : c.cfl_fluid, Range{0.0, 1.0, true});
   c.initial_time_step = spec->number("initial_time_step", 0.0, Range::non_negative());
   c.max_time_step = spec->number("max_time_step", end_time, Range::positive());
   c.time_step_growth = spec->number("time_step_growth", c.time_step_growth, Range{1.0, 10.0, false});

@@ -183,6 +183,8 @@ void Simulation::initialise() {
   double stable = std::numeric_limits<double>::infinity();
   for (Index z = 0; z < zones.size(); ++z) {
     if (!zones.active[z]) continue;
+    const Index body = body_of_zone(z);
+    const double cfl = body >= 0 ? cfl_of(bodies_[static_cast<std::size_t>(body)]) : controls_.cfl;
     // The stress-wave speed, plus the spread of corner velocities: a zone must not invert in the
     // first step even where the initial state sets no wave speed (a cold gas under a piston).
     const ZoneCorners& n = zones.corners[z];
@@ -191,7 +193,7 @@ void Simulation::initialise() {
     for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
     const double speed = zones.sound_speed[z] + 2.0 * spread;
     if (speed <= 0.0) continue;
-    const double dt = controls_.cfl * quad::smallest_altitude(state_.mesh.corner_positions(z), zones.area[z]) / speed;
+    const double dt = cfl * quad::smallest_altitude(state_.mesh.corner_positions(z), zones.area[z]) / speed;
     if (dt < stable) { stable = dt; state_.controlling_zone = z; }
   }
   state_.stable_time_step = stable;
@@ -402,13 +404,13 @@ void Simulation::update_zones() {
   ZoneUpdateParams params;
   params.time_step_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
   params.time_step_next = state_.time_step_next;
-  params.cfl = controls_.cfl;
   params.max_volume_change = controls_.max_volume_change;
   state_.stable_time_step = std::numeric_limits<double>::infinity();
   double internal = 0.0;
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
     params.shear_modulus = material.shear_modulus();
+    params.cfl = cfl_of(body);
     const double* work_correction = area_weighted_work_.empty() ? nullptr : area_weighted_work_.data();
     // One dispatch per body: the zone loop is compiled for this geometry, EOS and strength model; its
     // blocks share the threads, and their results are taken in block order.
@@ -515,6 +517,10 @@ void Simulation::fail(const std::string& what, Index zone) const {
   throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, state_.time,
                                      state_.cycle, what),
                          body_name, local, state_.time);
+}
+
+double Simulation::cfl_of(const Body& body) const {
+  return materials_[static_cast<std::size_t>(body.material)].shear_modulus() == 0.0 ? controls_.cfl_fluid : controls_.cfl;
 }
 
 Index Simulation::body_of_zone(Index zone) const {

@@ -87,6 +87,9 @@ TEST_CASE("A problem symmetric about a plane stays symmetric", "[invariance][sym
   // (no viscosity limiter, no viscous hourglass): the limiter's min/max and sign branches flip on
   // round-off-sized differences and amplify them (measured 2e-10 relative after 300 steps with them on).
   SimulationSetup s = acoustic_block(GeometryKind::planar, 12);
+  // The step count and tolerance were set at CFL 0.5; at the fluids' default 0.6 the same 300 steps
+  // run 20 % further into the compression and the round-off difference reaches 1.0e-10 (measured).
+  s.controls.cfl_fluid = 0.5;
   Simulation sim(std::move(s));
   for (int k = 0; k < 300; ++k) sim.step();
   const NodeFields& nodes = sim.mesh().nodes;

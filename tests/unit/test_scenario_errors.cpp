@@ -56,6 +56,16 @@ TEST_CASE("a valid scenario parses and resolves its defaults", "[scenario]") {
   CHECK(scenario.setup.bodies.at(0).name == "box");
   // The resolved document carries defaults that were not in the file.
   CHECK(scenario.resolved_json.find("\"cfl\": 0.5") != std::string::npos);
+  CHECK(scenario.resolved_json.find("\"cfl_fluid\": 0.6") != std::string::npos);
+  CHECK(scenario.setup.controls.cfl_fluid == 0.6);
+  // A scenario that names `cfl` alone means every body; `cfl_fluid` then overrides it for the fluids.
+  const auto one = parse_scenario(replaced(valid_scenario(), "\"bodies\"", "\"controls\": { \"cfl\": 0.4 }, \"bodies\""), "t.json");
+  CHECK(one.setup.controls.cfl == 0.4);
+  CHECK(one.setup.controls.cfl_fluid == 0.4);
+  const auto both = parse_scenario(
+      replaced(valid_scenario(), "\"bodies\"", "\"controls\": { \"cfl\": 0.4, \"cfl_fluid\": 0.7 }, \"bodies\""), "t.json");
+  CHECK(both.setup.controls.cfl == 0.4);
+  CHECK(both.setup.controls.cfl_fluid == 0.7);
   CHECK(scenario.resolved_json.find("\"quadratic\"") != std::string::npos);
   // The resolved document is itself a valid scenario giving the same mesh.
   const auto again = parse_scenario(scenario.resolved_json, "resolved.json");

@@ -38,7 +38,7 @@ double l1_error(const Mesh& mesh, const Body& body, const ExactProfile& exact, C
 // Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
 void apply_study_controls(io::Scenario& scenario) {
   if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
-    scenario.setup.controls.cfl = std::stod(cfl);
+    scenario.setup.controls.cfl = scenario.setup.controls.cfl_fluid = std::stod(cfl);
   }
   if (const char* growth = std::getenv("KRUG_STUDY_GROWTH"); growth != nullptr && *growth != '\0') {
     scenario.setup.controls.time_step_growth = std::stod(growth);

@@ -155,6 +155,8 @@ class Simulation {
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
  private:
+  // The CFL number of a body's zones: controls.cfl_fluid without strength, controls.cfl with it.
+  double cfl_of(const Body& body) const;
   // The recipe, in order.
   void compute_forces();          // 1. F^n: corner forces of every zone
   void update_area_weighted_scale();  // s_p = M_p / M^A_p and the booking weights, at the current positions (area-weighted RZ)
