@@ -13,6 +13,7 @@
 
 #include <numbers>
 
+#include "rz_rectangle_blasts.hpp"
 #include "verification_support.hpp"
 
 using namespace krug;
@@ -94,46 +95,6 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov]
               {"Sedov, spherical (RZ polar, area weighted)", Coordinate::radius, 1.0, spherical_energy});
 }
 
-namespace {
-
-// Shock radius on a ray at `degrees` from the axis: the radius of the densest zone whose centre lies
-// within 2.5 degrees of the ray (4 degrees for the axis and the z = 0 plane, which have zones on one side).
-double shock_on_ray(const Simulation& sim, double degrees) {
-  const Mesh& mesh = sim.mesh();
-  const double half_width = (degrees <= 0.0 || degrees >= 90.0) ? 4.0 : 2.5;
-  double best_density = -1.0, radius = 0.0;
-  for (Index z = 0; z < mesh.zones.size(); ++z) {
-    if (!mesh.zones.active[z]) continue;
-    Vec2 c{};
-    for (Index n : mesh.zones.corners[z]) c += 0.25 * mesh.nodes.position(n);
-    const double angle = std::atan2(c.y, c.x) * 180.0 / std::numbers::pi;
-    if (std::abs(angle - degrees) > half_width) continue;
-    if (mesh.zones.density[z] > best_density) {
-      best_density = mesh.zones.density[z];
-      radius = norm(c);
-    }
-  }
-  return radius;
-}
-
-// Runs the rectangle's scenario to t = 1 and checks the shock on the rays 0, 15, ..., 90 degrees
-// (within 2 zones of r = 1; the axis ray only when `judge_axis`), reporting each.
-void check_rectangle_rays(const io::Scenario& scenario, const std::string& label, bool judge_axis) {
-  const double zone = 1.2 / 50.0;
-  const Run run = run_to_end(scenario);
-  INFO(run.failure);
-  REQUIRE(run.completed());
-  CHECK(run.simulation.ledger().relative_energy_drift() < 1e-12);
-  for (const double ray : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0}) {
-    const double shock = shock_on_ray(run.simulation, ray);
-    INFO("ray " << ray << " degrees: shock at " << shock);
-    report(label, format_number("shock r on the %.0f degree ray", ray), "1.000", shock,
-           format_number("%+.1f zones", (shock - 1.0) / zone), run.simulation.mesh().zones.size(), run.seconds);
-    if (judge_axis || ray > 0.0) CHECK(std::abs(shock - 1.0) < 2.0 * zone);
-  }
-}
-
-}  // namespace
 
 // F7 (docs/verification.md): on a rectangular RZ mesh the spherical Sedov stops near the axis with
 // default controls. Subzonal pressures (Caramana & Shashkov 1998) let it reach t = 1, with the shock
@@ -148,16 +109,16 @@ TEST_CASE("Sedov spherical on a rectangular RZ mesh reaches t = 1 with subzonal 
            run.completed() ? "completed" : "stops (F7)", run.simulation.mesh().zones.size(), run.seconds);
   }
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
-  check_rectangle_rays(scenario, "Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5", false);
+  rz_rectangle::check_sedov(scenario, 50, "Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5", false);
 }
 
 // F7 cured by the two options together: subzonal pressures 0.5 and artificial heat conduction 2
-// (docs/verification.md, F7). Measured: 50 x 50 reaches t = 1 in 307 cycles, shock +0.2 to +1.3 zones
-// on every ray, the axis ray included; 100 x 100 in 883 cycles, +0.4 to +1.4 zones.
+// (docs/verification.md, F7). Measured: 50 x 50 reaches t = 1 in 329 cycles, shock +0.2 to +1.3 zones
+// on every ray, the axis ray included; finer meshes in convergence_hard_cases.cpp.
 TEST_CASE("Sedov spherical on a rectangular RZ mesh with subzonal pressures and heat conduction: shock on every ray",
           "[sedov][axisymmetric][subzonal]") {
   io::Scenario scenario = load_example("sedov_spherical_rectangle.json");
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
   scenario.setup.controls.viscosity.heat_conduction = 2.0;
-  check_rectangle_rays(scenario, "Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5 + heat 2", true);
+  rz_rectangle::check_sedov(scenario, 50, "Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5 + heat 2", true);
 }
