@@ -193,7 +193,7 @@ void Simulation::initialise() {
     for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
     const double speed = zones.sound_speed[z] + 2.0 * spread;
     if (speed <= 0.0) continue;
-    const double dt = cfl * quad::smallest_altitude(state_.mesh.corner_positions(z), zones.area[z]) / speed;
+    const double dt = cfl * quad::stable_length(state_.mesh.corner_positions(z), zones.area[z]) / speed;
     if (dt < stable) { stable = dt; state_.controlling_zone = z; }
   }
   state_.stable_time_step = stable;

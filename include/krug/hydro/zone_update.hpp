@@ -204,7 +204,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       result.internal_energy += zones.mass[z] * energy;
 
       // Stable step: CFL with the viscous signal speed b (Wilkins), and the |dV/V| limit.
-      const double length = quad::smallest_altitude(x, area);
+      const double length = quad::stable_length(x, area);
       const double b = zones.viscous_speed[z];
       const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
       double dt = signal > 0.0 ? params.cfl * length / signal : std::numeric_limits<double>::infinity();

@@ -13,6 +13,7 @@
 #include <array>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "krug/core/vec2.hpp"
 
@@ -139,6 +140,20 @@ inline double smallest_altitude(const Corners& c, double zone_area) {
     longest = std::max(longest, dot(e, e));
   }
   return longest > 0.0 ? zone_area / std::sqrt(longest) : 0.0;
+}
+
+// The length of the CFL condition: the zone's smallest altitude. A quadrilateral's is taken as its
+// area over its longest edge (exact for a parallelogram); a triangle (a quadrilateral with a repeated
+// corner: the centre ring of a sector mesh) has smallest altitude 2 area / longest edge, twice that.
+inline double stable_length(const Corners& c, double zone_area) {
+  double longest = 0.0, shortest = std::numeric_limits<double>::infinity();
+  for (int p = 0; p < 4; ++p) {
+    const Vec2 e = c[next(p)] - c[p];
+    longest = std::max(longest, dot(e, e));
+    shortest = std::min(shortest, dot(e, e));
+  }
+  if (!(longest > 0.0)) return 0.0;
+  return (shortest == 0.0 ? 2.0 : 1.0) * zone_area / std::sqrt(longest);
 }
 
 // Flanagan & Belytschko (1981) hourglass shape vector gamma = (h - (h.x) b_x / A - (h.y) b_y / A) / 2
