@@ -6,7 +6,8 @@ for docs/performance.md, and with --plot FILE a log-log plot of error against se
     scripts/speed_error.py [--tests build/tests/krug_convergence_tests] [--scale 1] [--plot speed_error.png]
                            [--cfl C] [--growth G]
 
---cfl and --growth override every run's controls.cfl and controls.time_step_growth (to compare the
+--cfl and --growth override every run's CFL numbers (controls.cfl and controls.cfl_fluid) and
+controls.time_step_growth (to compare the
 time-step control against accuracy side by side).
 
 The error is the L1 density error against the exact profile for the gas problems and, for the Taylor

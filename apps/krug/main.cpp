@@ -208,9 +208,16 @@ constexpr const char* instruction_set = KRUG_INSTRUCTION_SET;
 constexpr const char* instruction_set = nullptr;
 #endif
 
+// Checked feature by feature (the level names are known to __builtin_cpu_supports only from GCC 12).
 bool processor_runs_instruction_set() {
-#if defined(KRUG_INSTRUCTION_SET) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  return __builtin_cpu_supports(KRUG_INSTRUCTION_SET);
+#if defined(KRUG_INSTRUCTION_SET) && defined(__x86_64__) && defined(__GNUC__)
+  __builtin_cpu_init();
+  bool runs = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+#if defined(__AVX512F__)
+  runs = runs && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
+#endif
+  return runs;
 #else
   return true;
 #endif

@@ -183,55 +183,69 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
   }
 }
 
-// Two bodies of a contact pair that touch where both hold the same velocity component, at values
-// that drive them into each other, cannot be kept apart: contact moves neither held node, so the
-// bodies would pass through each other (or, where the held nodes belong to thin zones, tangle them).
-// Such a scenario is refused, naming both conditions.
+// Two bodies of a contact pair that touch, facing each other, where both hold the same velocity
+// component at values that drive them into each other, cannot be kept apart: contact moves neither
+// held node, so the bodies would pass through each other (or tangle the zones between). Such a
+// scenario is refused, naming both conditions. Only nodes that coincide at the start are compared:
+// held faces that meet later, across a gap, are not detected here.
 void check_held_contact(const SimulationSetup& setup, const std::map<Index, NodeConstraint>& constraints,
                         const std::map<Index, std::array<std::string, 2>>& held_by, GeometryKind geometry) {
+  const bool any_pair = std::any_of(setup.contact.pairs.begin(), setup.contact.pairs.end(),
+                                    [](const contact::BodyPair& p) { return p.first != p.second; });
+  if (!any_pair || constraints.empty()) return;
   const Mesh& mesh = setup.mesh;
-  // Each held node's outward direction: from the mean centre of its zones to the node.
-  std::map<Index, Vec2> centre_sum;
-  std::map<Index, int> centre_count;
+  struct Held {
+    Index node;
+    NodeConstraint constraint;
+    Vec2 outward;  // from the mean centre of the node's zones to the node
+  };
+  std::vector<std::vector<Held>> held(setup.bodies.size());
+  std::map<Index, std::pair<Vec2, int>> centres;  // per held node: sum of its zones' centres, count
   for (Index z = 0; z < mesh.zones.size(); ++z) {
-    for (Index n : mesh.zones.corners[z]) {
-      if (!constraints.contains(n)) continue;
-      centre_sum[n] += 0.25 * (mesh.nodes.position(mesh.zones.corners[z][0]) + mesh.nodes.position(mesh.zones.corners[z][1]) +
-                               mesh.nodes.position(mesh.zones.corners[z][2]) + mesh.nodes.position(mesh.zones.corners[z][3]));
-      ++centre_count[n];
+    const ZoneCorners& n = mesh.zones.corners[z];
+    const Vec2 centre = 0.25 * (mesh.nodes.position(n[0]) + mesh.nodes.position(n[1]) + mesh.nodes.position(n[2]) +
+                                mesh.nodes.position(n[3]));
+    for (int p = 0; p < 4; ++p) {
+      if (std::find(n.begin(), n.begin() + p, n[p]) != n.begin() + p) continue;  // a repeated corner once
+      if (!constraints.contains(n[p])) continue;
+      auto& [sum, count] = centres[n[p]];
+      sum += centre;
+      ++count;
     }
   }
-  auto body_of = [&](Index n) {
-    for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
-      if (n >= setup.bodies[i].node_begin && n < setup.bodies[i].node_end) return i;
+  for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+    const Body& body = setup.bodies[i];
+    for (auto it = constraints.lower_bound(body.node_begin); it != constraints.end() && it->first < body.node_end; ++it) {
+      const auto found = centres.find(it->first);
+      if (found == centres.end()) continue;
+      const auto& [sum, count] = found->second;
+      held[i].push_back({it->first, it->second, mesh.nodes.position(it->first) - (1.0 / count) * sum});
     }
-    return setup.bodies.size();
-  };
+  }
   for (std::size_t k = 0; k < setup.contact.pairs.size(); ++k) {
     const contact::BodyPair& pair = setup.contact.pairs[k];
     if (pair.first == pair.second) continue;
-    const Body& first = setup.bodies[static_cast<std::size_t>(pair.first)];
-    for (const auto& [a, ca] : constraints) {
-      if (body_of(a) != static_cast<std::size_t>(pair.first)) continue;
-      const Vec2 pa = mesh.nodes.position(a);
-      const Vec2 outward = pa - (1.0 / centre_count[a]) * centre_sum[a];
-      const double reach = 1e-6 * norm(outward);  // "touching": within a millionth of the zone's size
-      for (const auto& [b, cb] : constraints) {
-        if (body_of(b) != static_cast<std::size_t>(pair.second)) continue;
-        if (norm(mesh.nodes.position(b) - pa) > reach) continue;
+    const std::size_t i = static_cast<std::size_t>(pair.first), j = static_cast<std::size_t>(pair.second);
+    if (i >= held.size() || j >= held.size()) continue;  // the contact set-up names the bad pair itself
+    for (const Held& a : held[i]) {
+      const Vec2 pa = mesh.nodes.position(a.node);
+      const double reach = 1e-6 * norm(a.outward);  // "touching": within a millionth of the zone's size
+      for (const Held& b : held[j]) {
+        if (norm(mesh.nodes.position(b.node) - pa) > reach) continue;
         for (int c = 0; c < 2; ++c) {
-          if (!(c == 0 ? ca.fix_x && cb.fix_x : ca.fix_y && cb.fix_y)) continue;
-          const double va = c == 0 ? mesh.nodes.u[a] : mesh.nodes.v[a];
-          const double vb = c == 0 ? mesh.nodes.u[b] : mesh.nodes.v[b];
-          const double closing = (va - vb) * (c == 0 ? outward.x : outward.y);
-          if (!(closing > 0.0)) continue;
-          const Body& second = setup.bodies[static_cast<std::size_t>(pair.second)];
-          fail(fmt::format("contact.pairs[{}]", k), fmt::format(
-              "\"{}\" and \"{}\" touch at ({:.6g}, {:.6g}) m, where {} holds v_{} = {:g} m/s and {} "
-              "holds v_{} = {:g} m/s: the held nodes close at {:g} m/s and contact cannot move either, so the bodies "
-              "would pass through each other; free one of the two conditions, or leave a gap",
-              first.name, second.name, pa.x, pa.y, held_by.at(a)[static_cast<std::size_t>(c)], axis_name(geometry, c), va,
-              held_by.at(b)[static_cast<std::size_t>(c)], axis_name(geometry, c), vb, std::abs(va - vb)));
+          if (!(c == 0 ? a.constraint.fix_x && b.constraint.fix_x : a.constraint.fix_y && b.constraint.fix_y)) continue;
+          const double outward_a = c == 0 ? a.outward.x : a.outward.y, outward_b = c == 0 ? b.outward.x : b.outward.y;
+          if (!(outward_a * outward_b < 0.0)) continue;  // not facing each other along this component
+          const double va = c == 0 ? mesh.nodes.u[a.node] : mesh.nodes.v[a.node];
+          const double vb = c == 0 ? mesh.nodes.u[b.node] : mesh.nodes.v[b.node];
+          if (!((va - vb) * outward_a > 0.0)) continue;  // separating or moving together
+          fail(fmt::format("contact.pairs[{}]", k),
+               fmt::format("\"{}\" and \"{}\" touch at ({:.6g}, {:.6g}) m, where {} holds v_{} = {:g} m/s and {} "
+                           "holds v_{} = {:g} m/s: the held nodes close at {:g} m/s and contact cannot move either, so "
+                           "the bodies would pass through each other; free one of the two conditions",
+                           setup.bodies[i].name, setup.bodies[j].name, pa.x, pa.y,
+                           held_by.at(a.node)[static_cast<std::size_t>(c)], axis_name(geometry, c), va,
+                           held_by.at(b.node)[static_cast<std::size_t>(c)], axis_name(geometry, c), vb, std::abs(va - vb)));
         }
       }
     }

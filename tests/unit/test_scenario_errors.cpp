@@ -200,6 +200,11 @@ TEST_CASE("held velocities that drive two bodies of a contact pair into each oth
   CHECK(with(pushing, R"({ "x_min": { "type": "velocity", "velocity": [4.18, null] } })", true) == "(no error)");
   CHECK(with(pushing, R"({ "x_min": { "type": "velocity", "velocity": [null, 0.0] } })", true) == "(no error)");
   CHECK(with(pushing, fixed, false) == "(no error)");
+  // Sliding, not closing: the left block's bottom held at v_y = -1 and the right block's bottom on a
+  // slip wall; at their shared corner node the two hold v_y at different values, but the bodies do
+  // not face each other along y there.
+  CHECK(with(R"({ "y_min": { "type": "velocity", "velocity": [null, -1.0] } })", R"({ "y_min": "slip" })", true) ==
+        "(no error)");
 }
 
 TEST_CASE("an end time beyond the cycle budget is refused before the run", "[scenario]") {

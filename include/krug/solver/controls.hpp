@@ -17,8 +17,10 @@ struct FractureControls {
 
 struct Controls {
   double end_time = 0.0;                 // s
-  double cfl = 0.5;                      // fraction of the zone's stable step, bodies with strength
-  double cfl_fluid = 0.6;                // the same for bodies without strength (docs/performance.md)
+  // Fraction of the zone's stable step: `cfl` in bodies with strength, `cfl_fluid` in bodies without
+  // (docs/performance.md). A scenario that gives `cfl` alone sets both; code setting one sets one.
+  double cfl = 0.5;
+  double cfl_fluid = 0.6;
   double initial_time_step = 0.0;        // s; 0 = from the CFL condition (1e-6 end_time if that is unbounded)
   double max_time_step = std::numeric_limits<double>::infinity();  // s
   double time_step_growth = 1.1;         // largest ratio of one step to the previous
