@@ -181,20 +181,21 @@ void Simulation::initialise() {
 
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
   double stable = std::numeric_limits<double>::infinity();
-  for (Index z = 0; z < zones.size(); ++z) {
-    if (!zones.active[z]) continue;
-    const Index body = body_of_zone(z);
-    const double cfl = body >= 0 ? cfl_of(bodies_[static_cast<std::size_t>(body)]) : controls_.cfl;
-    // The stress-wave speed, plus the spread of corner velocities: a zone must not invert in the
-    // first step even where the initial state sets no wave speed (a cold gas under a piston).
-    const ZoneCorners& n = zones.corners[z];
-    const Vec2 mean = 0.25 * (nodes.velocity(n[0]) + nodes.velocity(n[1]) + nodes.velocity(n[2]) + nodes.velocity(n[3]));
-    double spread = 0.0;
-    for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
-    const double speed = zones.sound_speed[z] + 2.0 * spread;
-    if (speed <= 0.0) continue;
-    const double dt = cfl * quad::stable_length(state_.mesh.corner_positions(z), zones.area[z]) / speed;
-    if (dt < stable) { stable = dt; state_.controlling_zone = z; }
+  for (const Body& body : bodies_) {
+    const double cfl = cfl_of(body);
+    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
+      if (!zones.active[z]) continue;
+      // The stress-wave speed, plus the spread of corner velocities: a zone must not invert in the
+      // first step even where the initial state sets no wave speed (a cold gas under a piston).
+      const ZoneCorners& n = zones.corners[z];
+      const Vec2 mean = 0.25 * (nodes.velocity(n[0]) + nodes.velocity(n[1]) + nodes.velocity(n[2]) + nodes.velocity(n[3]));
+      double spread = 0.0;
+      for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
+      const double speed = zones.sound_speed[z] + 2.0 * spread;
+      if (speed <= 0.0) continue;
+      const double dt = cfl * quad::stable_length(state_.mesh.corner_positions(z), zones.area[z]) / speed;
+      if (dt < stable) { stable = dt; state_.controlling_zone = z; }
+    }
   }
   state_.stable_time_step = stable;
   double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable;

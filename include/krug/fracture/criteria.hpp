@@ -25,6 +25,7 @@
 #include <string_view>
 
 #include "krug/core/vec2.hpp"
+#include "krug/mesh/quad.hpp"
 
 namespace krug::fracture {
 
@@ -101,18 +102,12 @@ inline Stretches principal_stretches(double f11, double f12, double f21, double 
 // initial configuration's area gradients.
 inline void deformation_gradient(const std::array<Vec2, 4>& current, const std::array<Vec2, 4>& initial_gradient,
                                  double initial_area, double& f11, double& f12, double& f21, double& f22) {
-  f11 = f12 = f21 = f22 = 0.0;
-  for (int p = 0; p < 4; ++p) {
-    f11 += current[p].x * initial_gradient[p].x;
-    f12 += current[p].x * initial_gradient[p].y;
-    f21 += current[p].y * initial_gradient[p].x;
-    f22 += current[p].y * initial_gradient[p].y;
-  }
+  const quad::Tensor2 f = quad::outer_sum(current, initial_gradient);
   const double inv = 1.0 / initial_area;
-  f11 *= inv;
-  f12 *= inv;
-  f21 *= inv;
-  f22 *= inv;
+  f11 = f.xx * inv;
+  f12 = f.xy * inv;
+  f21 = f.yx * inv;
+  f22 = f.yy * inv;
 }
 
 // Principal values of the Cauchy stress s - p I (in-plane pair from the 2x2 block, plus the zz one).

@@ -46,35 +46,21 @@ template <GeometryKind G>
     const std::array<Vec2, 4> in_plane = quad::axisymmetric_gradient_integrals(mid);
     const std::array<Vec2, 4> c = quad::axisymmetric_volume_gradient(mid);
     double volume_rate = 0.0;
-    double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0;
-    for (int p = 0; p < 4; ++p) {
-      volume_rate += dot(u[p], c[p]);
-      gxx += u[p].x * in_plane[p].x;
-      gxy += u[p].x * in_plane[p].y;
-      gyx += u[p].y * in_plane[p].x;
-      gyy += u[p].y * in_plane[p].y;
-    }
+    for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], c[p]);
+    const quad::Tensor2 g = quad::outer_sum(u, in_plane);
     const double inv_volume = 1.0 / quad::axisymmetric_volume(mid);
-    rate.xx = gxx * inv_volume;
-    rate.yy = gyy * inv_volume;
-    rate.xy = 0.5 * (gxy + gyx) * inv_volume;
-    rate.zz = volume_rate * inv_volume - (gxx + gyy) * inv_volume;
-    spin = in_plane_spin(gyx * inv_volume, gxy * inv_volume);
+    rate.xx = g.xx * inv_volume;
+    rate.yy = g.yy * inv_volume;
+    rate.xy = 0.5 * (g.xy + g.yx) * inv_volume;
+    rate.zz = volume_rate * inv_volume - (g.xx + g.yy) * inv_volume;
+    spin = in_plane_spin(g.yx * inv_volume, g.xy * inv_volume);
   } else {
-    const double area = quad::area(mid);
-    const std::array<Vec2, 4> b = quad::area_gradient(mid);
-    double dux_dx = 0.0, dux_dy = 0.0, duy_dx = 0.0, duy_dy = 0.0;
-    for (int p = 0; p < 4; ++p) {
-      dux_dx += u[p].x * b[p].x;
-      dux_dy += u[p].x * b[p].y;
-      duy_dx += u[p].y * b[p].x;
-      duy_dy += u[p].y * b[p].y;
-    }
-    const double inv_area = 1.0 / area;
-    rate.xx = dux_dx * inv_area;
-    rate.yy = duy_dy * inv_area;
-    rate.xy = 0.5 * (dux_dy + duy_dx) * inv_area;
-    spin = in_plane_spin(duy_dx * inv_area, dux_dy * inv_area);
+    const quad::Tensor2 g = quad::outer_sum(u, quad::area_gradient(mid));  // A times the velocity gradient
+    const double inv_area = 1.0 / quad::area(mid);
+    rate.xx = g.xx * inv_area;
+    rate.yy = g.yy * inv_area;
+    rate.xy = 0.5 * (g.xy + g.yx) * inv_area;
+    spin = in_plane_spin(g.yx * inv_area, g.xy * inv_area);
   }
 }
 

@@ -13,7 +13,6 @@
 #include <array>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "krug/core/vec2.hpp"
 
@@ -142,18 +141,36 @@ inline double smallest_altitude(const Corners& c, double zone_area) {
   return longest > 0.0 ? zone_area / std::sqrt(longest) : 0.0;
 }
 
-// The length of the CFL condition: the zone's smallest altitude. A quadrilateral's is taken as its
-// area over its longest edge (exact for a parallelogram); a triangle (a quadrilateral with a repeated
-// corner: the centre ring of a sector mesh) has smallest altitude 2 area / longest edge, twice that.
-inline double stable_length(const Corners& c, double zone_area) {
-  double longest = 0.0, shortest = std::numeric_limits<double>::infinity();
+// A triangle stored as a quadrilateral: two neighbouring corners at the same point (the centre ring
+// of a sector mesh repeats the centre node).
+inline bool is_triangle(const Corners& c) {
   for (int p = 0; p < 4; ++p) {
-    const Vec2 e = c[next(p)] - c[p];
-    longest = std::max(longest, dot(e, e));
-    shortest = std::min(shortest, dot(e, e));
+    if (c[next(p)].x == c[p].x && c[next(p)].y == c[p].y) return true;
   }
-  if (!(longest > 0.0)) return 0.0;
-  return (shortest == 0.0 ? 2.0 : 1.0) * zone_area / std::sqrt(longest);
+  return false;
+}
+
+// The length of the CFL condition: the zone's smallest altitude. A quadrilateral's is taken as its
+// area over its longest edge (exact for a parallelogram); a triangle's is 2 area / longest edge,
+// twice that.
+inline double stable_length(const Corners& c, double zone_area) {
+  return (is_triangle(c) ? 2.0 : 1.0) * smallest_altitude(c, zone_area);
+}
+
+// sum_p a_p (x) g_p, the 2 x 2 tensor whose ij component is sum_p a_p.i g_p.j (velocity or position
+// against shape-function gradients: a velocity gradient or a deformation gradient times the area).
+struct Tensor2 {
+  double xx = 0.0, xy = 0.0, yx = 0.0, yy = 0.0;
+};
+inline Tensor2 outer_sum(const std::array<Vec2, 4>& a, const std::array<Vec2, 4>& g) {
+  Tensor2 t;
+  for (int p = 0; p < 4; ++p) {
+    t.xx += a[p].x * g[p].x;
+    t.xy += a[p].x * g[p].y;
+    t.yx += a[p].y * g[p].x;
+    t.yy += a[p].y * g[p].y;
+  }
+  return t;
 }
 
 // Flanagan & Belytschko (1981) hourglass shape vector gamma = (h - (h.x) b_x / A - (h.y) b_y / A) / 2
