@@ -264,6 +264,12 @@ def report(run_dirs, csv_path):
             "piece_residual": piece,
             "piece_dU_over_U0": (u0 - piece) / u0,
             "piece_mass_g": pen.get("residual_mass", float("nan")) * 1e3,
+            # The whole bullet (summary.json penetration.whole): every node and free element of its lead.
+            "whole_residual": (pen.get("whole") or {}).get("velocity", float("nan")),
+            "whole_dU_over_U0": (pen.get("whole") or {}).get("velocity_loss", float("nan")),
+            "free_element_mass_g": (pen.get("whole") or {}).get("free_element_mass", float("nan")) * 1e3,
+            "free_element_velocity": (pen.get("whole") or {}).get("free_element_velocity", float("nan")),
+            "backward_mass_g": (pen.get("whole") or {}).get("backward_mass", float("nan")) * 1e3,
             "mass_lost_g": pen.get("mass_lost", float("nan")) * 1e3,
             "target_energy_J": pen.get("target_energy_absorbed", float("nan")),
             "target_plastic_J": pen.get("target_plastic_work", float("nan")),
@@ -297,7 +303,7 @@ def report(run_dirs, csv_path):
             f.write(",".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
     for r in rows:
         print(f"{r['run']:40s} {r['status']:9s} U0 {r['U0']:.0f} largest piece {r['piece_residual']:.1f} m/s "
-              f"(dU/U0 {r['piece_dU_over_U0']:.3f}, {r['piece_mass_g']:.3f} g) target energy {r['target_energy_J']:.2f} J; "
+              f"(dU/U0 {r['piece_dU_over_U0']:.3f}, {r['piece_mass_g']:.3f} g) whole dU/U0 {r['whole_dU_over_U0']:.3f} target energy {r['target_energy_J']:.2f} J; "
               f"body {r['residual']:.1f} dU/U0 {r['dU_over_U0']:.3f} "
               f"core {r['core_residual']:.1f} perforated {r['perforated']} plug {r['plug_mass_g']:.3f} g eroded {100 * r['eroded_fraction']:.2f} % "
               f"drift {r['energy_drift']:.1e} wall {r['wall_seconds']:.0f} s\n    first damage on the axis (time @ depth fraction): "

@@ -164,6 +164,15 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                         {"mass_lost", p.mass_lost},
                         {"eroded_mass", p.eroded_mass},
                         {"residual_kinetic_energy", p.projectile_kinetic_energy},
+                        {"initial_speed", p.initial_speed},
+                        {"piece_velocity_loss", p.piece_velocity_loss},
+                        {"whole", {{"mass", p.whole_mass},
+                                   {"velocity", p.whole_velocity},
+                                   {"velocity_loss", p.whole_velocity_loss},
+                                   {"free_element_mass", p.free_element_mass},
+                                   {"free_element_velocity", p.free_element_velocity},
+                                   {"backward_mass", p.backward_mass},
+                                   {"backward_velocity", p.backward_velocity}}},
                         {"plug", p.plug_body.empty() ? Json(nullptr)
                                                      : Json{{"body", p.plug_body}, {"mass", p.plug_mass}, {"velocity", p.plug_velocity}}},
                         {"target_plastic_work", p.target_plastic_work},
@@ -185,6 +194,12 @@ std::vector<std::string> penetration_lines(const RunResult& result) {
   } else {
     lines.push_back(fmt::format("{} did not perforate: depth {:.3f} mm, velocity {:.1f} m/s, mass {:.4g} g", p.projectile,
                                 1e3 * p.depth, p.residual_velocity, 1e3 * p.residual_mass));
+  }
+  if (p.initial_speed > 0.0) {
+    lines.push_back(fmt::format("velocity loss dU/U0 {:.3f} of the largest piece, {:.3f} of the whole projectile "
+                                "({:.1f} m/s over {:.4g} g; free elements {:.4g} g at {:.1f} m/s; {:.4g} g moving backwards)",
+                                p.piece_velocity_loss, p.whole_velocity_loss, p.whole_velocity, 1e3 * p.whole_mass,
+                                1e3 * p.free_element_mass, p.free_element_velocity, 1e3 * p.backward_mass));
   }
   lines.push_back(p.plug_body.empty() ? std::string("no plug")
                                       : fmt::format("plug from {}: {:.4g} g at {:.1f} m/s", p.plug_body, 1e3 * p.plug_mass,

@@ -279,7 +279,9 @@ void write_sweep_table(const std::filesystem::path& directory, const std::vector
   // Penetration columns: the summaries' "penetration" block (docs/outputs.md), when any variant has one.
   const std::vector<std::vector<const char*>> penetration_columns = {
       {"perforated"}, {"perforation_time"}, {"residual_velocity"}, {"residual_mass"}, {"mass_lost"},
-      {"eroded_mass"}, {"plug", "mass"}, {"plug", "velocity"}, {"target_energy_absorbed"}, {"final"}};
+      {"eroded_mass"}, {"plug", "mass"}, {"plug", "velocity"}, {"target_energy_absorbed"}, {"final"},
+      {"piece_velocity_loss"}, {"whole", "velocity"}, {"whole", "velocity_loss"}, {"whole", "free_element_mass"},
+      {"whole", "backward_mass"}};
   std::vector<std::string> header = {"variant"};
   auto column_name = [](const std::vector<const char*>& path) {
     std::string name = "penetration";

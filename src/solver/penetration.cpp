@@ -45,6 +45,7 @@ PenetrationRecord start_penetration(const Simulation& simulation, const Penetrat
     r.rear = std::max(r.rear, advanced(s.bbox_min, s.bbox_max, r));
   }
   r.deepest = advanced(p.bbox_min, p.bbox_max, r);
+  r.initial_speed = r.direction * speed;
   return r;
 }
 
@@ -104,7 +105,43 @@ PenetrationReport report_penetration(const Simulation& simulation, const Penetra
   r.mass_lost = r.initial_mass - r.residual_mass;
   r.eroded_mass = whole * simulation.fracture_counts(setup.projectile).eroded_mass;
 
+  // The whole projectile: its nodes (nodal masses carry every zone still on the grid) and the free
+  // elements made from its zones.
   const Particles& particles = simulation.particles();
+  double node_mass = 0.0, node_momentum = 0.0, back_mass = 0.0, back_momentum = 0.0;
+  for (Index n = projectile.node_begin; n < projectile.node_end; ++n) {
+    const double along_n = record.direction * along(Vec2{nodes.u[n], nodes.v[n]}, record.axis);
+    node_mass += nodes.mass[n];
+    node_momentum += nodes.mass[n] * along_n;
+    if (along_n < 0.0) {
+      back_mass += nodes.mass[n];
+      back_momentum += nodes.mass[n] * along_n;
+    }
+  }
+  double free_mass = 0.0, free_momentum = 0.0;
+  for (Index i = 0; i < particles.size(); ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    if (particles.body[k] != setup.projectile) continue;
+    const double along_p = record.direction * along(particles.velocity(i), record.axis);
+    free_mass += particles.mass[k];
+    free_momentum += particles.mass[k] * along_p;
+    if (along_p < 0.0) {
+      back_mass += particles.mass[k];
+      back_momentum += particles.mass[k] * along_p;
+    }
+  }
+  r.initial_speed = record.initial_speed;
+  r.whole_mass = whole * (node_mass + free_mass);
+  r.whole_velocity = node_mass + free_mass > 0.0 ? (node_momentum + free_momentum) / (node_mass + free_mass) : 0.0;
+  r.free_element_mass = whole * free_mass;
+  r.free_element_velocity = free_mass > 0.0 ? free_momentum / free_mass : 0.0;
+  r.backward_mass = whole * back_mass;
+  r.backward_velocity = back_mass > 0.0 ? back_momentum / back_mass : 0.0;
+  if (r.initial_speed > 0.0) {
+    r.piece_velocity_loss = (r.initial_speed - r.residual_velocity) / r.initial_speed;
+    r.whole_velocity_loss = (r.initial_speed - r.whole_velocity) / r.initial_speed;
+  }
+
   for (const Index t : setup.targets) {
     const Body& target = body_of(simulation, t);
     const std::vector<Fragment> target_pieces = simulation.fragments(target);

@@ -72,6 +72,20 @@ TEST_CASE("penetration results of E1: the flyer stops at the analytic depth, the
   CHECK(p["target_kinetic_energy"].get<double>() == Approx(0.5 * in_pulse).epsilon(0.03));
   CHECK(p["target_energy_absorbed"].get<double>() == p["target_kinetic_energy"].get<double>());
   CHECK(summary["warnings"].empty());
+  // The whole projectile: the flyer stays one piece, so the whole figures are the piece's; and the two
+  // bodies' momenta sum to the flyer's initial momentum (no boundary conditions act here), which checks
+  // the whole-projectile momentum against the target's, measured independently in the bodies block.
+  const Json& whole = p["whole"];
+  CHECK(whole["mass"].get<double>() == Approx(p["initial_mass"].get<double>()).epsilon(1e-12));
+  CHECK(whole["free_element_mass"].get<double>() == 0.0);
+  CHECK(p["initial_speed"].get<double>() == Approx(flyer_speed).epsilon(1e-12));
+  CHECK(whole["velocity"].get<double>() == Approx(p["residual_velocity"].get<double>()).margin(1e-9 * flyer_speed));
+  const Json& target = summary["bodies"]["target"];
+  const double momentum = whole["mass"].get<double>() * whole["velocity"].get<double>() +
+                          target["mass"].get<double>() * target["velocity"][0].get<double>();
+  CHECK(momentum == Approx(p["initial_mass"].get<double>() * flyer_speed).epsilon(1e-10));
+  CHECK(whole["velocity_loss"].get<double>() ==
+        Approx((flyer_speed - whole["velocity"].get<double>()) / flyer_speed).epsilon(1e-12));
 }
 
 TEST_CASE("penetration geometry: a flyer beyond the target's rear face has perforated; a run cut short says so", "[app][penetration]") {

@@ -46,6 +46,7 @@ struct PenetrationRecord {
   double rear = 0.0;         // the targets' initial rear face (most advanced target point at t = 0)
   double deepest = -1e300;   // largest nose position seen (m, along the impact direction)
   double perforation_time = -1.0;  // s; -1: not perforated yet
+  double initial_speed = 0.0;  // m/s: the projectile's mass-weighted speed along the impact direction at t = 0
 };
 
 struct PenetrationReport {
@@ -69,6 +70,18 @@ struct PenetrationReport {
   double target_kinetic_energy = 0.0;  // J: nodes and particles of the targets
   double target_energy_absorbed = 0.0; // J: the sum of the two
   double projectile_kinetic_energy = 0.0;  // J of the projectile's piece (nodes; half-step velocities)
+  // The whole projectile: every node and every free element made from the projectile's zones
+  // (largest piece, broken-off pieces, eroded and converted particles), mass-weighted momentum.
+  double initial_speed = 0.0;          // m/s along the impact direction at t = 0
+  double whole_velocity = 0.0;         // m/s: whole momentum along the impact direction / whole mass
+  double whole_mass = 0.0;             // kg (equals initial_mass: the bookkeeping check of the figure)
+  double piece_velocity_loss = 0.0;    // (initial_speed - residual_velocity) / initial_speed, the largest piece
+  double whole_velocity_loss = 0.0;    // (initial_speed - whole_velocity) / initial_speed
+  double free_element_mass = 0.0;      // kg of free elements made from the projectile (eroded or converted zones)
+  double free_element_velocity = 0.0;  // m/s: their mass-weighted velocity along the impact direction
+  double backward_mass = 0.0;          // kg of the projectile (nodal masses and free elements) moving against
+                                       // the impact direction
+  double backward_velocity = 0.0;      // m/s: its mass-weighted velocity along the impact direction (<= 0)
 };
 
 // The record's fixed geometry from the initial state (throws InputError when the projectile does not move).
