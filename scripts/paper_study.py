@@ -2,7 +2,7 @@
 """The validation study of the paper's case (docs/validation.md), generated, run and tabulated.
 
     scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 10]
-                                  [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity]
+                                  [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity,knobs]
 
 Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
 directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
@@ -17,6 +17,8 @@ Fig. 6 group. Groups:
   fig6         dU/U0 against H = 1..5 mm, three kinds, 2.6 g and 11 g (n 1-mm plates in contact, one
                n-mm plate, n spaced 1-mm plates); at H = 1 the three kinds are the same target
   velocity     the three 3 mm targets at 350, 370 and 390 m/s, 2.6 g
+  knobs        2.6 g, monolithic and layered 3 mm: the reference and one numerical control changed at a
+               time (lead erosion 0.05 / 0.2, hourglass 0.02 / 0.15, c_l 0.15, c_q 0.5, gap tolerance)
   sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target
                for the gap
 The study resolution (--zones-per-mm, default 5) applies to all but the mesh group.
@@ -73,6 +75,23 @@ def cases(groups, zones):
         ]
         for name, options in variants:
             out.append(("sensitivity", f"sensitivity_{name}", base + options))
+    if "knobs" in groups:
+        # The headline against the numerical knobs (2.6 g, monolithic and layered, at the study
+        # resolution): each variant changes one control of the generated scenario (JSON path=value).
+        knobs = [
+            ("reference", []),
+            ("erosion_0.05", ["--erosion", "0.05"]),
+            ("erosion_0.2", ["--erosion", "0.2"]),
+            ("hourglass_0.02", ["--set", "controls.hourglass.viscous=0.02", "--set", "controls.hourglass.stiffness=0.02"]),
+            ("hourglass_0.15", ["--set", "controls.hourglass.viscous=0.15", "--set", "controls.hourglass.stiffness=0.15"]),
+            ("linear_viscosity_0.15", ["--set", "controls.viscosity.linear=0.15"]),
+            ("quadratic_viscosity_0.5", ["--set", "controls.viscosity.quadratic=0.5"]),
+            ("gap_tolerance_1e-6", ["--gap-tolerance", "1e-6"]),
+        ]
+        for kind in ("monolithic", "layered"):
+            for name, options in knobs:
+                out.append(("knobs", f"knobs_{kind}_{name}",
+                            ["--mass", "2.6", "--kind", kind, "--zones-per-mm", str(zones)] + options))
     if "ordering" in groups:
         # A: the target's numerics as the paper's (2.6 g, 10 zones per mm): the paper's summation contact,
         # or conversion by loosening alone (the altitude rules f_h and f_i made inactive), each crossed with
@@ -101,10 +120,24 @@ def cases(groups, zones):
 
 
 def generate(outdir, name, options):
-    """Writes the scenario; returns its physics (the scenario without title and description) as text."""
+    """Writes the scenario; returns its physics (the scenario without title and description) as text.
+    Options "--set PATH=VALUE" (a dotted JSON path, a JSON value) edit the generated scenario."""
+    edits = [options[i + 1] for i, o in enumerate(options) if o == "--set"]
+    options = [o for i, o in enumerate(options) if o != "--set" and (i == 0 or options[i - 1] != "--set")]
     subprocess.run([sys.executable, PAPER_CASE, "generate", os.path.join(outdir, "scenarios"), "--name", name] + options,
                    check=True, stdout=subprocess.DEVNULL)
-    scenario = json.load(open(os.path.join(outdir, "scenarios", f"{name}.json")))
+    path = os.path.join(outdir, "scenarios", f"{name}.json")
+    scenario = json.load(open(path))
+    if edits:
+        for edit in edits:
+            keys, value = edit.split("=", 1)
+            at = scenario
+            keys = keys.split(".")
+            for key in keys[:-1]:
+                at = at.setdefault(key, {})
+            at[keys[-1]] = json.loads(value)
+        with open(path, "w") as f:
+            json.dump(scenario, f, indent=2)
     scenario.pop("title", None)
     scenario.pop("description", None)
     return json.dumps(scenario, sort_keys=True)

@@ -105,25 +105,55 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
     boxes_.push_back(box.expanded(start_depth * norm(position(s.b) - position(s.a))));
   }
   grid_.build(boxes_);
+  // Each slave node's candidates are gathered, then kept only where the node can touch the face: a
+  // node beside a segment's end and behind its line (past a convex corner of the master) is never in
+  // contact with that face, and a node behind a face's line is handled by the master's shallowest face
+  // it projects onto (the closest feature, as for particles: contact_geometry). Without this, a node
+  // landing on a face near a convex corner took the side face's line distance as a pre-existing
+  // overlap and was pushed sideways.
+  struct Found {
+    Candidate candidate;
+    double gap;   // signed distance from the face's line at x^n
+    bool over;    // projects onto the segment at x^n (within end_slack)
+  };
+  std::vector<Found> found;
   for (Index c : slaves.nodes) {
+    found.clear();
     Box swept;
     swept.include(position(c));
     swept.include(predicted(c, dt_next));
     grid_.query(swept, [&](std::size_t k) {
       const BoundarySegment& s = masters.segments[k];
       if (s.a == c || s.b == c) return;
-      const SegmentProjection start = project(position(c), position(s.a), position(s.b), 0.0);
-      const double length = norm(position(s.b) - position(s.a));
+      const Vec2 a = position(s.a), b = position(s.b);
+      const SegmentProjection start = project(position(c), a, b, 0.0);
+      const double length = norm(b - a);
       if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
       if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
+      const double along = dot(position(c) - a, b - a) / std::max(length * length, 1e-300);
+      const bool over = along >= -end_slack && along <= 1.0 + end_slack;
+      // Beside the end and further behind the line than past the end: past a convex corner, on the
+      // far side of the corner's bisector (a right angle's; a node grazing the line keeps its contact).
+      const double beside = length * std::max(-along, along - 1.0);
+      if (!over && start.gap < 0.0 && -start.gap > beside) return;
       Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
       candidate.kind = Kind::node_segment;
       candidate.friction = friction;
       candidate.weight = weight;
       candidate.start_gap = std::min(start.gap, 0.0);
       candidate.length = length;
-      candidates_.push_back(candidate);
+      found.push_back({candidate, start.gap, over});
     });
+    double shallowest = -std::numeric_limits<double>::infinity();
+    for (const Found& f : found) {
+      if (f.over) shallowest = std::max(shallowest, f.gap);
+    }
+    for (const Found& f : found) {
+      // Behind this face's line but deeper than behind (or in front of) another face it projects onto:
+      // that face is the one it touches.
+      if (f.gap < 0.0 && f.gap < shallowest - end_slack * f.candidate.length) continue;
+      candidates_.push_back(f.candidate);
+    }
   }
 }
 

@@ -29,7 +29,7 @@ static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed:
 static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/io/checkpoint.cpp");
 static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/io/checkpoint.cpp");
 static_assert(sizeof(std::vector<double>) != 24 ||
-                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 3 * 24 + 9 * 8,
+                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 6 * 24 + 9 * 8,
               "SimulationState changed: update src/io/checkpoint.cpp");
 
 class Writer {
@@ -157,6 +157,9 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(s.ledger);
   w.vector(s.fracture_counts);
   w.vector(s.body_plastic_work);
+  w.vector(s.body_viscous_work);
+  w.vector(s.body_hourglass_work);
+  w.vector(s.body_converted_energy);
   w.vector(s.zones_per_node);
   w.value(s.time);
   w.value(static_cast<std::int64_t>(s.cycle));
@@ -248,6 +251,9 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   s.ledger = r.value<Ledger>();
   r.vector(s.fracture_counts);
   r.vector(s.body_plastic_work);
+  r.vector(s.body_viscous_work);
+  r.vector(s.body_hourglass_work);
+  r.vector(s.body_converted_energy);
   r.vector(s.zones_per_node);
   s.time = r.value<double>();
   s.cycle = static_cast<long>(r.value<std::int64_t>());

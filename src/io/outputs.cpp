@@ -109,8 +109,13 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                          {"centroid", pair(b.centroid)},
                          {"bbox", {{"min", pair(b.bbox_min)}, {"max", pair(b.bbox_max)}}},
                          {"zones", b.zones}};
+    const Index index = static_cast<Index>(&body - simulation.bodies().data());
+    bodies[body.name]["energy"] = {{"internal", number(whole * simulation.internal_energy(index))},
+                                   {"converted", number(whole * simulation.converted_energy(index))},
+                                   {"plastic", number(whole * simulation.plastic_work(index))},
+                                   {"viscous", number(whole * simulation.viscous_work(index))},
+                                   {"hourglass", number(whole * simulation.hourglass_work(index))}};
     if (simulation.fracture_enabled()) {
-      const Index index = static_cast<Index>(&body - simulation.bodies().data());
       const FractureCounts& counts = simulation.fracture_counts(index);
       Json pieces = Json::array();
       for (const Fragment& f : simulation.fragments(body)) {

@@ -156,15 +156,18 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
     // Hourglass work is numerical: a large share of the internal energy means the mesh's hourglass
     // modes carried a good part of the deformation, and the strains and stresses there are suspect.
     // The energy put into the zones: what they hold now plus what left the mesh with converted zones.
-    const EnergyLedger& e = simulation.ledger().energy;
-    const double into_zones = e.internal + e.converted;
-    if (into_zones > 0.0 && e.hourglass > hourglass_warning_fraction * into_zones) {
-      result.warnings.push_back(fmt::format(
-          "hourglass work is {:.1f} % of the energy put into the zones ({:.4g} J of {:.4g} J, internal plus converted): "
-          "the mesh's hourglass modes carried part of the deformation; refine the mesh where it deforms most, or "
-          "check controls.hourglass",
-          100.0 * e.hourglass / into_zones, simulation.whole_body_factor() * e.hourglass,
-          simulation.whole_body_factor() * into_zones));
+    // Judged body by body: a stiff target's small hourglass share must not hide a soft projectile's.
+    for (Index b = 0; b < static_cast<Index>(simulation.bodies().size()); ++b) {
+      const double into_zones = simulation.internal_energy(b) + simulation.converted_energy(b);
+      const double hourglass = simulation.hourglass_work(b);
+      if (into_zones > 0.0 && hourglass > hourglass_warning_fraction * into_zones) {
+        result.warnings.push_back(fmt::format(
+            "{}: hourglass work is {:.1f} % of the energy put into its zones ({:.4g} J of {:.4g} J, internal plus "
+            "converted): the mesh's hourglass modes carried part of the deformation; refine the mesh where it "
+            "deforms most, or check controls.hourglass",
+            simulation.bodies()[static_cast<std::size_t>(b)].name, 100.0 * hourglass / into_zones,
+            simulation.whole_body_factor() * hourglass, simulation.whole_body_factor() * into_zones));
+      }
     }
   }
   if (!simulation.ledger().energy_closed()) {

@@ -119,6 +119,7 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
       convert_zone_to_particles(state_.mesh, state_.particles, z, controls_.fracture.particles_per_zone,
                                 state_.time + state_.time_step_next, state_.zones_per_node, held_x_, held_y_);
   state_.ledger.energy.converted += energy.converted();
+  state_.body_converted_energy[b] += energy.converted();
   state_.ledger.energy.internal -= energy.internal;
   if (rule == ConversionRule::erosion) {
     ++state_.fracture_counts[b].eroded;

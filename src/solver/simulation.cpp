@@ -68,6 +68,9 @@ Simulation::Simulation(SimulationSetup setup)
   state_.mesh = std::move(setup.mesh);
   state_.fracture_counts.assign(bodies_.size(), FractureCounts{});
   state_.body_plastic_work.assign(bodies_.size(), 0.0);
+  state_.body_viscous_work.assign(bodies_.size(), 0.0);
+  state_.body_hourglass_work.assign(bodies_.size(), 0.0);
+  state_.body_converted_energy.assign(bodies_.size(), 0.0);
   for (const Body& body : bodies_) {
     const auto m = static_cast<std::size_t>(body.material);
     fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
@@ -241,11 +244,23 @@ bool Simulation::finished() const {
   return state_.time >= controls_.end_time * (1.0 - 1e-12) || state_.cycle >= controls_.max_cycles;
 }
 
+double Simulation::internal_energy(Index body) const {
+  const Body& b = bodies_[static_cast<std::size_t>(body)];
+  const ZoneFields& zones = state_.mesh.zones;
+  double sum = 0.0;
+  for (Index z = b.zone_begin; z < b.zone_end; ++z) {
+    if (zones.active[z]) sum += zones.mass[z] * zones.specific_energy[z];
+  }
+  return sum;
+}
+
 SimulationState Simulation::state() const { return state_; }
 
 void Simulation::restore(SimulationState s) {
   if (s.mesh.nodes.size() != state_.mesh.nodes.size() || s.mesh.zones.size() != state_.mesh.zones.size() ||
-      s.fracture_counts.size() != bodies_.size() || s.body_plastic_work.size() != bodies_.size()) {
+      s.fracture_counts.size() != bodies_.size() || s.body_plastic_work.size() != bodies_.size() ||
+      s.body_viscous_work.size() != bodies_.size() || s.body_hourglass_work.size() != bodies_.size() ||
+      s.body_converted_energy.size() != bodies_.size()) {
     throw InputError("restart: the checkpoint does not belong to this scenario (mesh sizes or body counts differ)");
   }
   state_ = std::move(s);
@@ -315,6 +330,9 @@ void Simulation::compute_forces() {
                              area_weighted, limiters);
     state_.ledger.energy.viscous += dt_mid * power.viscous;
     state_.ledger.energy.hourglass += dt_mid * power.hourglass;
+    const std::size_t b = static_cast<std::size_t>(&body - bodies_.data());
+    state_.body_viscous_work[b] += dt_mid * power.viscous;
+    state_.body_hourglass_work[b] += dt_mid * power.hourglass;
   }
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     sum_corner_forces(state_.mesh, node_corners_, first, last);

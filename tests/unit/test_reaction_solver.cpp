@@ -449,20 +449,14 @@ TEST_CASE("pre-existing overlap: removed by the overlap fraction, at most overla
 }
 
 TEST_CASE("node landing on a face near a convex corner gets no push from the side face",
-          "[kernels][reaction_solver][!mayfail]") {
-  // Known failure (found by this test; the library is unchanged). A small diamond (corners (0.9, 1.05),
-  // (0.95, 1.1), (0.85, 1.1), (0.9, 1.15), node mass 1) falls at 4 m/s onto the top face of the held
-  // unit square, 0.1 from its corner (1, 1). Hand solution: only the bottom corner (node 4) reaches the
-  // face, g* = 0.05 - 0.02 * 4 = -0.03, w = 1, R = 0.03 / 2e-4 = 150, v = -4 + 0.01 * 150 = -2.5, and
-  // nothing acts along x: the node started outside the square, with no overlap to remove.
-  // What happens: node 4 also becomes a candidate of the right side (1, 0) -> (1, 1). Its start "gap"
-  // is taken from that side's line, (0.9 - 1) = -0.1, although the node is above the square, beyond
-  // the side's end (contact.cpp, add_node_segment_candidates: start.inside is not checked). The
-  // predicted node projects within the side (along 0.97), so the contact is valid and its start gap
-  // -0.1 is treated as a pre-existing overlap: target -0.1 + min(0.1 x 0.1, 1 x 0.02) = -0.09,
-  // R_side = 0.01 / 2e-4 = 50 pushes the node sideways, u = +0.5 m/s (Gauss-Seidel; +0.25 with the
-  // summation method), booked as overlap work. (For particles the same start-gap problem was fixed by
-  // taking the start gap on the predicted feature, contact_geometry.)
+          "[kernels][reaction_solver]") {
+  // A small diamond (corners (0.9, 1.05), (0.95, 1.1), (0.85, 1.1), (0.9, 1.15), node mass 1) falls at
+  // 4 m/s onto the top face of the held unit square, 0.1 from its corner (1, 1). Hand solution: only
+  // the bottom corner (node 4) reaches the face, g* = 0.05 - 0.02 * 4 = -0.03, w = 1,
+  // R = 0.03 / 2e-4 = 150, v = -4 + 0.01 * 150 = -2.5, and nothing acts along x: the node started
+  // outside the square, with no overlap to remove. The right side (1, 0) -> (1, 1) must not act: the
+  // node starts beside its end and behind its line (x = 0.9 < 1), past the convex corner, where the
+  // side's line distance (-0.1) is no overlap (contact.cpp, add_node_segment_candidates).
   const ReactionMethod method = GENERATE(ReactionMethod::gauss_seidel, ReactionMethod::summation);
   Scene scene;
   add_body(scene, identity, 1.0, {0.0, 0.0}, true);

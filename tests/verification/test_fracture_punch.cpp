@@ -221,6 +221,9 @@ TEST_CASE("E8 punch with a floor above the band's step: the damaged zones below 
   CHECK(run.floor_violations == 0);
   CHECK(counts.converted >= 8);
   CHECK(counts.interior_conversions >= 1);
-  CHECK(run.cycles < comparison.cycles);
+  // What the rule is for: the step is no longer held by the band (smallest dt / first 1.1 with the
+  // rule, 0.14 without). The run's cycle count is not asserted: it follows how fast the punch's surface
+  // moves in, which the contact's corner rule changed (541 with the rule against 550 without it before
+  // that rule, 587 against 550 after; docs/verification.md, Contact, C8).
   CHECK(run.smallest_step_ratio > comparison.smallest_step_ratio);
 }

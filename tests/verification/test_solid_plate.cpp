@@ -68,3 +68,25 @@ TEST_CASE("E5 beryllium plate: undamped first bending mode at full and 1/10 ampl
          format_number("%+.1e vs 1/10 amplitude", full.period() / small.period() - 1.0), full.zones, full.seconds);
   report("E5 plate", "energy drift over 3 periods", "< 1 % per period", full.energy_drift, "-", full.zones, full.seconds);
 }
+
+TEST_CASE("E5 beryllium plate over six periods: the stiffness hourglass stores, it does not leak", "[E5][strength][hourglass]") {
+  // The bending mode rotates every zone back and forth. The stiffness hourglass state is a generalised
+  // force; carried in the plane's fixed components it would not turn with the zone, and energy would
+  // leak into it period after period (measured before it was rotated with the zone's spin: 0.54 %,
+  // 3.6 % and 14.6 % of the peak internal energy after 1, 3 and 6 periods, growing). Rotated, it holds
+  // a small bounded share: criterion below 1 % of the peak internal energy over six periods, with the
+  // period still within 1 % of the converged one (above).
+  const PlateVibration run = run_plate(60, 10, 1.0, 6.0 * 29.0e-6);
+  INFO(run.failure << "; hourglass work " << run.hourglass_work << " J/m, largest " << run.largest_hourglass_work
+                   << " J/m, peak internal " << run.peak_internal << " J/m; period " << run.period() << " s over "
+                   << run.crossings.size() << " crossings");
+  REQUIRE(run.failure.empty());
+  REQUIRE(run.crossings.size() >= 11);
+  CHECK(run.largest_hourglass_work < 0.01 * run.peak_internal);
+  CHECK(run.energy_drift < 1e-12);
+  // The full-amplitude period is 3.4 % above the small-amplitude one (first test): within 1 % of that.
+  CHECK(run.period() == Approx(1.034 * converged_small_period).epsilon(0.01));
+  CHECK(run.peaks.back() == Approx(run.peaks.front()).epsilon(0.05));
+  report("E5 plate", "hourglass work over 6 periods / peak internal energy", "< 0.01",
+         run.largest_hourglass_work / run.peak_internal, "-", run.zones, run.seconds);
+}

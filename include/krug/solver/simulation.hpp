@@ -90,6 +90,9 @@ struct SimulationState {
   Ledger ledger;
   std::vector<FractureCounts> fracture_counts;
   std::vector<double> body_plastic_work;
+  std::vector<double> body_viscous_work;     // per body, as the ledger's viscous line (per radian or per m)
+  std::vector<double> body_hourglass_work;   // per body, as the ledger's hourglass line
+  std::vector<double> body_converted_energy; // per body, as the ledger's converted line
   std::vector<Index> zones_per_node;
   double time = 0.0;
   long cycle = 0;
@@ -151,6 +154,11 @@ class Simulation {
   const FractureCounts& fracture_counts(Index body) const { return state_.fracture_counts[static_cast<std::size_t>(body)]; }
   // Plastic work done in one body's zones so far (J per radian or per m; the ledger's plastic line is their sum).
   double plastic_work(Index body) const { return state_.body_plastic_work[static_cast<std::size_t>(body)]; }
+  double viscous_work(Index body) const { return state_.body_viscous_work[static_cast<std::size_t>(body)]; }
+  double hourglass_work(Index body) const { return state_.body_hourglass_work[static_cast<std::size_t>(body)]; }
+  double converted_energy(Index body) const { return state_.body_converted_energy[static_cast<std::size_t>(body)]; }
+  // Sum m e over the body's active zones (per radian or per m).
+  double internal_energy(Index body) const;
   bool fracture_enabled() const { return fracture_enabled_; }
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
