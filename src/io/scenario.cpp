@@ -177,7 +177,10 @@ Json expand_material(const Json& given, const std::string& path) {
   if (!set) {
     std::vector<std::string> names;
     for (const library::MaterialSet& s : library::material_sets) names.emplace_back(s.name);
-    const auto guess = nearest(name, names);
+    auto guess = nearest(name, names);
+    for (std::size_t i = 0; !guess && !name.empty() && i < names.size(); ++i) {
+      if (names[i].find(name) != std::string::npos) guess = names[i];  // "copper": "ofhc-copper"
+    }
     throw InputError(fmt::format("{}: unknown library material \"{}\"; the library has {}{}", where, name,
                                  library_names(), guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
   }
