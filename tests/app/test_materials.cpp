@@ -11,6 +11,7 @@
 #include "test_support.hpp"
 #include "krug/core/error.hpp"
 #include "krug/io/scenario.hpp"
+#include "krug/io/sweep.hpp"
 #include "krug/material/library.hpp"
 
 namespace fs = std::filesystem;
@@ -145,4 +146,19 @@ TEST_CASE("the schema's library names are the library's", "[app][materials][sche
   Json names = Json::array();
   for (const krug::library::MaterialSet& set : krug::library::material_sets) names.push_back(std::string(set.name));
   CHECK(schema["$defs"]["material_name"]["enum"] == names);
+}
+
+TEST_CASE("a sweep into a material named by a string overrides the library set", "[app][materials][sweep]") {
+  const fs::path scenario = fs::path(KRUG_EXAMPLES_DIR) / "paper" / "coarse" / "monolithic_3mm_2.6g_z5.json";
+  REQUIRE(krug::test::read_json(scenario)["materials"]["al6061"] == "paper-al6061-t6");
+  const auto variants = krug::io::prepare_sweep(
+      scenario, {krug::io::parse_sweep_set("materials.al6061.strength.yield_stress=2.5e8,3.0e8")},
+      krug::test::scratch("sweep_library"));
+  REQUIRE(variants.size() == 2);
+  const Json written = krug::test::read_json(variants[1].scenario)["materials"]["al6061"];
+  CHECK(written == Json({{"base", "paper-al6061-t6"}, {"strength", {{"yield_stress", 3.0e8}}}}));
+  const Json resolved =
+      Json::parse(krug::io::parse_scenario(krug::test::read_text(variants[1].scenario), "v.json").resolved_json);
+  CHECK(resolved["materials"]["al6061"]["strength"]["yield_stress"] == 3.0e8);
+  CHECK(resolved["materials"]["al6061"]["strength"]["shear_modulus"] == 2.46e10);  // the set's, kept
 }
