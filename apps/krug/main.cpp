@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
+#include "krug/material/library.hpp"
 #include "krug/run/run.hpp"
 #include "krug/io/scenario.hpp"
 #include "pictures.hpp"
@@ -39,6 +40,10 @@ constexpr std::string_view usage = R"(usage:
       Runs every combination of the values (PATH like materials.steel.density or
       bodies[0].initial.velocity[0]) in parallel processes into DIR/<variant>/ and writes
       DIR/sweep.csv (default DIR: out/<scenario>-sweep).
+  krug materials [NAME]
+      Lists the material library (name, density, equation of state, strength, source); with a NAME,
+      every constant of that set with its source. A scenario names a set as "materials": {"plate":
+      "al6061-t6"} or {"plate": {"base": "al6061-t6", ...overrides...}} (docs/materials.md).
   krug --help | --version
 
 Exit codes: 0 completed, 1 run failed, 2 bad input or usage, 3 unexpected error,
@@ -51,6 +56,48 @@ int count_in(const std::string* word, long most) {
   char* end = nullptr;
   const long n = std::strtol(word->c_str(), &end, 10);
   return *end == '\0' && n >= 1 && n <= most ? static_cast<int>(n) : 0;
+}
+
+// `krug materials [NAME]`: the library, or one set with every constant and its source.
+int list_materials(const std::vector<std::string>& names) {
+  namespace library = krug::library;
+  if (names.size() > 1) {
+    std::fprintf(stderr, "krug: materials takes at most one NAME\n");
+    return 2;
+  }
+  if (names.empty()) {
+    std::printf("%-16s %8s  %-14s %-18s %s\n", "name", "kg/m^3", "eos", "strength", "source");
+    for (const library::MaterialSet& set : library::material_sets) {
+      const library::Constant* density = library::find_constant(set, "", "density");
+      std::printf("%-16.*s %8.0f  %-14.*s %-18.*s %.*s\n", static_cast<int>(set.name.size()), set.name.data(),
+                  density ? density->value : 0.0, static_cast<int>(set.eos_model.size()), set.eos_model.data(),
+                  static_cast<int>(set.strength_model.size()), set.strength_model.data(),
+                  static_cast<int>(set.source.size()), set.source.data());
+    }
+    std::printf("krug materials NAME prints one set with every constant and its source (docs/materials.md).\n");
+    return 0;
+  }
+  const library::MaterialSet* set = library::find_material_set(names.front());
+  if (!set) {
+    std::string list;
+    for (const library::MaterialSet& s : library::material_sets) list += fmt::format("{}{}", list.empty() ? "" : ", ", s.name);
+    std::fprintf(stderr, "krug: unknown material \"%s\"; the library has: %s\n", names.front().c_str(), list.c_str());
+    return 2;
+  }
+  std::printf("%s: %s\n", std::string(set->name).c_str(), std::string(set->title).c_str());
+  std::printf("source: %s\n", std::string(set->source).c_str());
+  std::printf("notes: %s\n", std::string(set->notes).c_str());
+  std::printf("eos.model = %s, strength.model = %s\n", std::string(set->eos_model).c_str(),
+              std::string(set->strength_model).c_str());
+  for (const library::Constant& c : set->constants) {
+    const std::string key = c.block.empty() ? std::string(c.key) : fmt::format("{}.{}", c.block, c.key);
+    std::printf("  %-38s %-12.6g %-9s %s\n", key.c_str(), c.value, std::string(c.unit).c_str(),
+                std::string(c.source).c_str());
+  }
+  if (library::find_constant(*set, "damage", "d1")) {
+    std::printf("The damage constants (Johnson-Cook D1..D5) are carried by the library; no failure law reads them yet.\n");
+  }
+  return 0;
 }
 
 int fail_usage(const std::string& message) {
@@ -240,6 +287,7 @@ int main(int argc, char** argv) {
     std::printf("krug %s (instruction set: %s)\n", KRUG_VERSION, instruction_set != nullptr ? instruction_set : "portable");
     return 0;
   }
+  if (words[0] == "materials") return list_materials(std::vector<std::string>(words.begin() + 1, words.end()));
   Arguments args;
   args.command = words[0];
   if (args.command != "run" && args.command != "validate" && args.command != "sweep") {

@@ -327,6 +327,16 @@ JsonObject JsonObject::object(std::string_view key) {
   return JsonObject(v, path_of(key), child);
 }
 
+JsonObject JsonObject::object_from(std::string_view key, const Json& value) {
+  (void)member(key);  // marks it read; a missing key fails here
+  Json* child = nullptr;
+  if (resolved_) {
+    (*resolved_)[std::string(key)] = Json::object();
+    child = &(*resolved_)[std::string(key)];
+  }
+  return JsonObject(value, path_of(key), child);
+}
+
 std::optional<JsonObject> JsonObject::optional_object(std::string_view key) {
   if (!has(key)) {
     used_.emplace(key);

@@ -76,6 +76,10 @@ class JsonObject {
   std::string choice(std::string_view key, const std::vector<std::string>& options, std::string_view fallback);
 
   JsonObject object(std::string_view key);
+  // Reads `value` in place of the member at `key` (a value made from it, such as a material set
+  // expanded from the library): errors name key's path, and what is read goes to key's resolved entry.
+  // `value` must outlive the reader.
+  JsonObject object_from(std::string_view key, const Json& value);
   std::optional<JsonObject> optional_object(std::string_view key);
   // The object at key, or an empty one when absent (so its defaults still reach the resolved document).
   JsonObject object_or_empty(std::string_view key);

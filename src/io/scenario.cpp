@@ -19,6 +19,7 @@
 #include "scenario_bodies.hpp"
 #include "scenario_run.hpp"
 #include "krug/core/error.hpp"
+#include "krug/material/library.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
 
@@ -122,10 +123,94 @@ Allowances read_allowances(JsonObject& top) {
   return a;
 }
 
+// The library's names, quoted, for messages.
+std::string library_names() {
+  std::string list;
+  for (const library::MaterialSet& set : library::material_sets) {
+    list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", set.name);
+  }
+  return list;
+}
+
+// A library set as the material block the reader reads: density, eos, strength and, where the set has
+// them, fracture criteria. The damage constants are carried by the library only (library.hpp).
+Json library_material(const library::MaterialSet& set) {
+  Json m = Json::object();
+  m["eos"] = Json{{"model", std::string(set.eos_model)}};
+  m["strength"] = Json{{"model", std::string(set.strength_model)}};
+  for (const library::Constant& c : set.constants) {
+    if (c.block == "damage") continue;
+    if (c.block.empty()) {
+      m[std::string(c.key)] = c.value;
+    } else {
+      m[std::string(c.block)][std::string(c.key)] = c.value;
+    }
+  }
+  return m;
+}
+
+// The material given at `path` (materials.NAME) as the reader reads it. A string names a library set; an
+// object with "base" names one and overrides it: a block given with another "model" replaces the set's
+// block, any other block is merged into it key by key, and any other key replaces the set's. The set's
+// name stays as "base" (information). Anything else is returned as it is.
+Json expand_material(const Json& given, const std::string& path) {
+  const Json* base = nullptr;
+  std::string where = path;
+  if (given.is_string()) {
+    base = &given;
+  } else if (given.is_object() && given.contains("base")) {
+    base = &given["base"];
+    where = path + ".base";
+    if (!base->is_string()) {
+      throw InputError(fmt::format("{}: expected the name of a library material (a string; krug materials lists "
+                                   "them), found {}", where, describe_value(*base)));
+    }
+  } else {
+    if (!given.is_object()) {
+      throw InputError(fmt::format("{}: expected a material (an object) or the name of a library material, found {}",
+                                   path, describe_value(given)));
+    }
+    return given;
+  }
+  const std::string name = base->get<std::string>();
+  const library::MaterialSet* set = library::find_material_set(name);
+  if (!set) {
+    std::vector<std::string> names;
+    for (const library::MaterialSet& s : library::material_sets) names.emplace_back(s.name);
+    auto guess = nearest(name, names);
+    for (std::size_t i = 0; !guess && !name.empty() && i < names.size(); ++i) {
+      if (names[i].find(name) != std::string::npos) guess = names[i];  // "copper": "ofhc-copper"
+    }
+    throw InputError(fmt::format("{}: unknown library material \"{}\"; the library has {}{}", where, name,
+                                 library_names(), guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
+  }
+  Json expanded = library_material(*set);
+  if (given.is_object()) {
+    for (const auto& [key, value] : given.items()) {
+      if (key == "base") continue;
+      Json& into = expanded[key];
+      const bool other_model = value.is_object() && value.contains("model") &&
+                               !(into.is_object() && into.contains("model") && into["model"] == value["model"]);
+      if (value.is_object() && into.is_object() && !other_model) {
+        for (const auto& [k, v] : value.items()) into[k] = v;
+      } else {
+        into = value;
+      }
+    }
+  }
+  expanded["base"] = name;
+  return expanded;
+}
+
 Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits,
                        fracture::ErosionLimits& erosion, const Allowances& allow) {
   Material m;
   m.name = name;
+  if (spec.has("base")) {
+    spec.text("base");  // the library set it came from, kept as information
+  } else {
+    spec.optional_raw("base");  // named among the valid keys
+  }
   m.reference_density = spec.number("density", Range::positive());
   JsonObject eos = spec.object("eos");
   m.eos = read_model<Eos>(eos, std::nullopt, m.reference_density);
@@ -373,16 +458,20 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
   scene.geometry = geometry;
   const double end_time = top.number("end_time", Range::positive());
 
-  // Materials: an object name -> definition.
+  // Materials: an object name -> definition, or the name of a library set, or a set with overrides.
   std::map<std::string, Index> material_index;
   std::vector<fracture::ErosionLimits> material_erosion;  // per material; a body's own block overrides it
+  std::vector<Json> expanded_materials;  // read in place of the given ones; outlive their readers
   {
     JsonObject materials = top.object("materials");
+    expanded_materials.reserve(materials.keys().size());
     for (const std::string& name : materials.keys()) {
       material_index[name] = static_cast<Index>(scene.materials.size());
       fracture::FractureLimits limits;
       fracture::ErosionLimits erosion;
-      scene.materials.push_back(read_material(name, materials.object(name), limits, erosion, allow));
+      expanded_materials.push_back(expand_material(materials.raw(name), materials.path_of(name)));
+      scene.materials.push_back(
+          read_material(name, materials.object_from(name, expanded_materials.back()), limits, erosion, allow));
       scene.fracture.push_back(limits);
       material_erosion.push_back(erosion);
     }

@@ -74,6 +74,9 @@ void set_path(OrderedJson& document, const SweepParameter& parameter, const Orde
       where += fmt::format("[{}]", step.index);
       at = &(*at)[static_cast<std::size_t>(step.index)];
     } else {
+      if (at->is_string() && s == 2 && steps[0].key == "materials" && steps[0].index < 0) {
+        *at = OrderedJson{{"base", at->get<std::string>()}};  // a library material: its values, overridden
+      }
       if (!at->is_object()) {
         throw InputError(fmt::format("--set {}: {} is not an object", parameter.path, where.empty() ? "(top level)" : where));
       }
