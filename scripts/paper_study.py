@@ -18,7 +18,8 @@ Fig. 6 group. Groups:
                n-mm plate, n spaced 1-mm plates); at H = 1 the three kinds are the same target
   velocity     the three 3 mm targets at 350, 370 and 390 m/s, 2.6 g
   knobs        2.6 g, monolithic and layered 3 mm: the reference and one numerical control changed at a
-               time (lead erosion 0.05 / 0.2, hourglass 0.02 / 0.15, c_l 0.15, c_q 0.5, gap tolerance)
+               time (lead erosion 0.05 / 0.2; hourglass 0.02 / 0.15, both parts and each alone; c_l 0.15 / 0.25 / 1;
+               c_q 0.5 / 0.75 / 1.5; gap tolerance)
   sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target
                for the gap
 The study resolution (--zones-per-mm, default 5) applies to all but the mesh group.
@@ -87,6 +88,14 @@ def cases(groups, zones):
             ("linear_viscosity_0.15", ["--set", "controls.viscosity.linear=0.15"]),
             ("quadratic_viscosity_0.5", ["--set", "controls.viscosity.quadratic=0.5"]),
             ("gap_tolerance_1e-6", ["--gap-tolerance", "1e-6"]),
+            ("hourglass_viscous_0.02", ["--set", "controls.hourglass.viscous=0.02"]),
+            ("hourglass_viscous_0.15", ["--set", "controls.hourglass.viscous=0.15"]),
+            ("hourglass_stiffness_0.02", ["--set", "controls.hourglass.stiffness=0.02"]),
+            ("hourglass_stiffness_0.15", ["--set", "controls.hourglass.stiffness=0.15"]),
+            ("linear_viscosity_0.25", ["--set", "controls.viscosity.linear=0.25"]),
+            ("linear_viscosity_1.0", ["--set", "controls.viscosity.linear=1.0"]),
+            ("quadratic_viscosity_0.75", ["--set", "controls.viscosity.quadratic=0.75"]),
+            ("quadratic_viscosity_1.5", ["--set", "controls.viscosity.quadratic=1.5"]),
         ]
         for kind in ("monolithic", "layered"):
             for name, options in knobs:
