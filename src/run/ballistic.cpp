@@ -262,6 +262,14 @@ CurveFit fit_lambert_jonas(const std::vector<double>& v_i, const std::vector<dou
     fit.note = fmt::format("did not converge in {} iterations", options.max_iterations);
     return fit;
   }
+  // A minimum on a bound (v_bl at the lowest speed, p at 0.5 or 50) is no fit: the points do not
+  // determine the parameter there, and the linearised uncertainties would be meaningless.
+  if ((free[2] && theta[2] >= x_min * (1.0 - 1e-6)) || (free[1] && (theta[1] <= 0.5 + 1e-9 || theta[1] >= 50.0 - 1e-9))) {
+    fit.note = fmt::format("the minimum lies on a bound (v_bl = {:.2f} m/s, p = {:.3g}): the points do not determine the "
+                           "curve",
+                           fit.v_bl, fit.p);
+    return fit;
+  }
   fit.valid = true;
   const std::array<double, 3> unit = {1.0, 1.0, scale};  // back to m/s for v_bl
   for (auto& row : fit.covariance) row.fill(0.0);
@@ -679,6 +687,8 @@ std::vector<std::string> ballistic_summary_lines(const BallisticStudy& study) {
                                 "{:.1f} +- {:.1f} m/s, rms {:.2f} m/s",
                                 study.recht_ipson.a, study.mean_plug_mass * 1e3, study.recht_ipson.v_bl,
                                 study.recht_ipson.sigma_v_bl, study.recht_ipson.rms));
+  } else {
+    lines.push_back("Recht-Ipson reference: none (" + study.recht_ipson.note + ")");
   }
   for (const std::string& n : study.notes) lines.push_back("note: " + n);
   return lines;
