@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include "krug/io/scenario.hpp"
 #include "pictures.hpp"
 #include "plots.hpp"
+#include "ballistic_runner.hpp"
 #include "sweep_runner.hpp"
 
 namespace {
@@ -44,6 +46,14 @@ constexpr std::string_view usage = R"(usage:
       Lists the material library (name, density, equation of state, strength, source); with a NAME,
       every constant of that set with its source. A scenario names a set as "materials": {"plate":
       "al6061-t6"} or {"plate": {"base": "al6061-t6", ...overrides...}} (docs/materials.md).
+  krug ballistic SCENARIO.json --velocity MIN,MAX [--tolerance DV] [--points-above N] [--jobs N]
+                 [--out DIR] [--pictures] [--keep-end-time] [--quiet]
+      Ballistic limit of a scenario with a "penetration" block: the projectile's initial velocity is
+      scaled (direction kept); a bracket of MIN and MAX is narrowed by N-section (N = --jobs runs at a
+      time) until no wider than DV (default 10 m/s), then --points-above (default 3) perforating runs
+      above it feed a Lambert-Jonas fit. Each speed runs as krug run in DIR/runs/v<speed>/; writes
+      DIR/ballistic.csv, ballistic.json, ballistic.png (default DIR: out/<scenario>-ballistic).
+      Below the scenario's speed the end time is stretched by the speed ratio unless --keep-end-time.
   krug --help | --version
 
 Exit codes: 0 completed, 1 run failed, 2 bad input or usage, 3 unexpected error,
@@ -136,6 +146,11 @@ struct Arguments {
   bool plots = true;
   std::vector<std::string> sets;
   int jobs = 0;
+  std::string velocity;           // ballistic: MIN,MAX
+  double tolerance = 10.0;        // ballistic, m/s
+  int points_above = 3;           // ballistic
+  bool keep_end_time = false;     // ballistic
+  bool run_pictures = false;      // ballistic: the runs' pictures and plots
   int threads = 0;  // 0: the scenario's controls.threads
 };
 
@@ -290,7 +305,7 @@ int main(int argc, char** argv) {
   if (words[0] == "materials") return list_materials(std::vector<std::string>(words.begin() + 1, words.end()));
   Arguments args;
   args.command = words[0];
-  if (args.command != "run" && args.command != "validate" && args.command != "sweep") {
+  if (args.command != "run" && args.command != "validate" && args.command != "sweep" && args.command != "ballistic") {
     return fail_usage("unknown command \"" + args.command + "\"");
   }
   for (std::size_t i = 1; i < words.size(); ++i) {
@@ -308,7 +323,31 @@ int main(int argc, char** argv) {
       const std::string* v = value();
       if (!v) return fail_usage("--set needs PATH=VALUE1,VALUE2,...");
       args.sets.push_back(*v);
-    } else if (w == "--jobs" && args.command == "sweep") {
+    } else if (w == "--velocity" && args.command == "ballistic") {
+      const std::string* v = value();
+      if (!v) return fail_usage("--velocity needs MIN,MAX (m/s)");
+      args.velocity = *v;
+    } else if (w == "--tolerance" && args.command == "ballistic") {
+      const std::string* v = value();
+      char* end = nullptr;
+      const double t = v ? std::strtod(v->c_str(), &end) : 0.0;
+      if (!v || v->empty() || *end != '\0' || !(t > 0.0) || !std::isfinite(t)) {
+        return fail_usage("--tolerance needs a positive speed (m/s)");
+      }
+      args.tolerance = t;
+    } else if (w == "--points-above" && args.command == "ballistic") {
+      const std::string* v = value();
+      if (v && *v == "0") {
+        args.points_above = 0;
+      } else {
+        args.points_above = count_in(v, 100);
+        if (args.points_above == 0) return fail_usage("--points-above needs a number from 0 to 100");
+      }
+    } else if (w == "--keep-end-time" && args.command == "ballistic") {
+      args.keep_end_time = true;
+    } else if (w == "--pictures" && args.command == "ballistic") {
+      args.run_pictures = true;
+    } else if (w == "--jobs" && (args.command == "sweep" || args.command == "ballistic")) {
       args.jobs = count_in(value(), 1024);
       if (args.jobs == 0) return fail_usage("--jobs needs a number from 1 to 1024");
     } else if (w == "--threads" && args.command == "run") {
@@ -339,6 +378,7 @@ int main(int argc, char** argv) {
   }
   if (args.scenario.empty() && args.restart.empty()) return fail_usage("no scenario file given");
   if (args.command == "sweep" && args.sets.empty()) return fail_usage("krug sweep needs at least one --set");
+  if (args.command == "ballistic" && args.velocity.empty()) return fail_usage("krug ballistic needs --velocity MIN,MAX");
   try {
     if (args.command == "validate") {
       const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
@@ -362,6 +402,20 @@ int main(int argc, char** argv) {
       sweep.out = args.out;
       sweep.quiet = args.quiet;
       return krug::app::run_sweep(sweep, interrupted, signal_number);
+    }
+    if (args.command == "ballistic") {
+      install_signal_handlers();
+      krug::app::BallisticArguments ballistic;
+      ballistic.scenario = args.scenario;
+      ballistic.velocity = args.velocity;
+      ballistic.tolerance = args.tolerance;
+      ballistic.points_above = args.points_above;
+      ballistic.jobs = args.jobs;
+      ballistic.out = args.out;
+      ballistic.quiet = args.quiet;
+      ballistic.pictures = args.run_pictures;
+      ballistic.scale_end_time = !args.keep_end_time;
+      return krug::app::run_ballistic(ballistic, interrupted, signal_number);
     }
     return run(args);
   } catch (const krug::InputError& error) {

@@ -10,4 +10,8 @@ namespace krug::app {
 // else a one-line reason for stderr (no Python, no matplotlib, script not found or failed).
 std::string make_plots(const std::filesystem::path& directory);
 
+// Writes DIR/ballistic.png from DIR/ballistic.csv and DIR/ballistic.json (scripts/plot_ballistic.py);
+// the same return as make_plots.
+std::string make_ballistic_plot(const std::filesystem::path& directory);
+
 }  // namespace krug::app

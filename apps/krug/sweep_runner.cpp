@@ -15,32 +15,23 @@
 
 namespace krug::app {
 
-int run_sweep(const SweepArguments& arguments, const std::atomic<bool>& interrupted,
-              const volatile std::sig_atomic_t& signal_number) {
-  std::vector<io::SweepParameter> parameters;
-  for (const std::string& set : arguments.sets) parameters.push_back(io::parse_sweep_set(set));
-  const std::filesystem::path scenario(arguments.scenario);
-  const std::filesystem::path out =
-      arguments.out.empty() ? std::filesystem::path("out") / (scenario.stem().string() + "-sweep")
-                            : std::filesystem::path(arguments.out);
-  const std::vector<io::SweepVariant> variants = io::prepare_sweep(scenario, parameters, out);
-  const int jobs = arguments.jobs > 0 ? arguments.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+std::vector<int> run_jobs(const std::vector<RunJob>& list, int jobs, const std::atomic<bool>& interrupted,
+                          const volatile std::sig_atomic_t& signal_number,
+                          const std::function<void(std::size_t, int)>& on_done) {
   const std::string self = self_executable().string();
-  if (!arguments.quiet) {
-    std::fprintf(stderr, "krug: sweep of %zu variants, %d at a time, into %s\n", variants.size(), jobs, out.string().c_str());
-  }
   std::map<pid_t, std::size_t> running;
-  std::vector<int> codes(variants.size(), -1);
-  std::size_t next = 0, done = 0;
+  std::vector<int> codes(list.size(), -1);
+  std::size_t next = 0;
   bool forwarded = false;
-  while (next < variants.size() || !running.empty()) {
-    while (!interrupted.load() && next < variants.size() && running.size() < static_cast<std::size_t>(jobs)) {
-      const io::SweepVariant& v = variants[next];
-      const pid_t pid = spawn({self, "run", v.scenario.string(), "--out", v.directory.string(), "--quiet"},
-                              v.directory / "log.txt", true);
+  while (next < list.size() || !running.empty()) {
+    while (!interrupted.load() && next < list.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
+      const RunJob& job = list[next];
+      std::vector<std::string> arguments = {self, "run", job.scenario.string(), "--out", job.directory.string(), "--quiet"};
+      arguments.insert(arguments.end(), job.extra.begin(), job.extra.end());
+      const pid_t pid = spawn(arguments, job.directory / "log.txt", true);
       if (pid < 0) {
         codes[next] = 127;
-        ++done;
+        if (on_done) on_done(next, 127);
       } else {
         running[pid] = next;
       }
@@ -62,13 +53,34 @@ int run_sweep(const SweepArguments& arguments, const std::atomic<bool>& interrup
     const std::size_t index = found->second;
     running.erase(found);
     codes[index] = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (on_done) on_done(index, codes[index]);
+  }
+  return codes;
+}
+
+int run_sweep(const SweepArguments& arguments, const std::atomic<bool>& interrupted,
+              const volatile std::sig_atomic_t& signal_number) {
+  std::vector<io::SweepParameter> parameters;
+  for (const std::string& set : arguments.sets) parameters.push_back(io::parse_sweep_set(set));
+  const std::filesystem::path scenario(arguments.scenario);
+  const std::filesystem::path out =
+      arguments.out.empty() ? std::filesystem::path("out") / (scenario.stem().string() + "-sweep")
+                            : std::filesystem::path(arguments.out);
+  const std::vector<io::SweepVariant> variants = io::prepare_sweep(scenario, parameters, out);
+  const int jobs = arguments.jobs > 0 ? arguments.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (!arguments.quiet) {
+    std::fprintf(stderr, "krug: sweep of %zu variants, %d at a time, into %s\n", variants.size(), jobs, out.string().c_str());
+  }
+  std::vector<RunJob> list;
+  for (const io::SweepVariant& v : variants) list.push_back({v.scenario, v.directory, {}});
+  std::size_t done = 0;
+  const std::vector<int> codes = run_jobs(list, jobs, interrupted, signal_number, [&](std::size_t index, int code) {
     ++done;
     if (!arguments.quiet) {
       std::fprintf(stderr, "krug: %zu/%zu %s %s\n", done, variants.size(), variants[index].name.c_str(),
-                   codes[index] == 0 ? "completed" : codes[index] == 1 ? "failed"
-                   : codes[index] >= 128 ? "interrupted" : "did not run (see log.txt)");
+                   code == 0 ? "completed" : code == 1 ? "failed" : code >= 128 ? "interrupted" : "did not run (see log.txt)");
     }
-  }
+  });
   io::write_sweep_table(out, parameters, variants);
   const auto completed = static_cast<std::size_t>(std::count(codes.begin(), codes.end(), 0));
   std::printf("krug: sweep of %zu variants: %zu completed, %zu not; table in %s\n", variants.size(), completed,

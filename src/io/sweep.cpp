@@ -30,7 +30,7 @@ std::vector<Step> parse_path(const std::string& path) {
   std::vector<Step> steps;
   std::size_t i = 0;
   auto bad = [&](const std::string& why) -> std::vector<Step> {
-    throw InputError(fmt::format("--set {}: {} (write a path like materials.steel.density or "
+    throw InputError(fmt::format("{}: {} (write a path like materials.steel.density or "
                                  "bodies[0].initial.velocity[0])", path, why));
   };
   while (i < path.size()) {
@@ -57,8 +57,8 @@ std::vector<Step> parse_path(const std::string& path) {
   return steps;
 }
 
-void set_path(OrderedJson& document, const SweepParameter& parameter, const OrderedJson& value) {
-  const std::vector<Step> steps = parse_path(parameter.path);
+void set_path(OrderedJson& document, const std::string& path, const OrderedJson& value) {
+  const std::vector<Step> steps = parse_path(path);
   OrderedJson* at = &document;
   std::string where;
   for (std::size_t s = 0; s < steps.size(); ++s) {
@@ -66,10 +66,10 @@ void set_path(OrderedJson& document, const SweepParameter& parameter, const Orde
     const bool last = s + 1 == steps.size();
     if (step.index >= 0) {
       if (!at->is_array()) {
-        throw InputError(fmt::format("--set {}: {} is not an array", parameter.path, where.empty() ? "(top level)" : where));
+        throw InputError(fmt::format("{}: {} is not an array", path, where.empty() ? "(top level)" : where));
       }
       if (static_cast<std::size_t>(step.index) >= at->size()) {
-        throw InputError(fmt::format("--set {}: {} has {} items", parameter.path, where, at->size()));
+        throw InputError(fmt::format("{}: {} has {} items", path, where, at->size()));
       }
       where += fmt::format("[{}]", step.index);
       at = &(*at)[static_cast<std::size_t>(step.index)];
@@ -78,12 +78,12 @@ void set_path(OrderedJson& document, const SweepParameter& parameter, const Orde
         *at = OrderedJson{{"base", at->get<std::string>()}};  // a library material: its values, overridden
       }
       if (!at->is_object()) {
-        throw InputError(fmt::format("--set {}: {} is not an object", parameter.path, where.empty() ? "(top level)" : where));
+        throw InputError(fmt::format("{}: {} is not an object", path, where.empty() ? "(top level)" : where));
       }
       where += (where.empty() ? "" : ".") + step.key;
       if (!at->contains(step.key)) {
         if (!last && steps[s + 1].index >= 0) {
-          throw InputError(fmt::format("--set {}: {} does not exist", parameter.path, where));
+          throw InputError(fmt::format("{}: {} does not exist", path, where));
         }
         (*at)[step.key] = OrderedJson::object();  // a default made explicit
       }
@@ -94,8 +94,8 @@ void set_path(OrderedJson& document, const SweepParameter& parameter, const Orde
 }
 
 // The value as JSON if it is JSON, else as a string (material names, models).
-OrderedJson value_of(const std::string& text) {
-  check_document_shape(text, "krug sweep: a --set value");
+OrderedJson value_of(const std::string& text, const std::string& path) {
+  check_document_shape(text, "the value for " + path);
   try {
     return OrderedJson::parse(text);
   } catch (const nlohmann::json::exception&) {
@@ -140,7 +140,23 @@ std::string csv_number(const Json& value) {
   return csv_field(value.is_string() ? value.get<std::string>() : value.dump());
 }
 
+// An edit's errors, with "--set " before them for the sweep's messages.
+template <typename F>
+auto as_set(F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(std::string("--set ") + e.what());
+  }
+}
+
 }  // namespace
+
+std::string edit_scenario(const std::string& text, const std::vector<ScenarioEdit>& edits, const std::string& origin) {
+  OrderedJson document = parse_document<OrderedJson>(text, origin);
+  for (const ScenarioEdit& edit : edits) set_path(document, edit.path, value_of(edit.value, edit.path));
+  return document.dump(2) + "\n";
+}
 
 SweepParameter parse_sweep_set(const std::string& argument) {
   const auto equals = argument.find('=');
@@ -149,7 +165,7 @@ SweepParameter parse_sweep_set(const std::string& argument) {
   }
   SweepParameter p;
   p.path = argument.substr(0, equals);
-  (void)parse_path(p.path);
+  (void)as_set([&] { return parse_path(p.path); });
   const std::string list = argument.substr(equals + 1);
   int depth = 0;
   bool in_string = false;
@@ -193,10 +209,11 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
     count *= p.values.size();
     if (count > 100000) throw InputError("krug sweep: more than 100000 variants");
   }
+  const std::string base_text = base.dump();
   std::vector<SweepVariant> variants;
+  std::vector<std::string> texts;
   for (std::size_t v = 0; v < count; ++v) {
     SweepVariant variant;
-    OrderedJson document = base;
     std::size_t rest = v;
     std::vector<std::size_t> choice(parameters.size());
     for (std::size_t k = parameters.size(); k-- > 0;) {  // last parameter varies fastest
@@ -204,11 +221,12 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
       rest /= parameters[k].values.size();
     }
     variant.name = fmt::format("{:03d}", v);
+    std::vector<ScenarioEdit> edits;
     for (std::size_t k = 0; k < parameters.size(); ++k) {
       const std::string& text = parameters[k].values[choice[k]];
-      const OrderedJson value = value_of(text);
-      set_path(document, parameters[k], value);
+      const OrderedJson value = as_set([&] { return value_of(text, parameters[k].path); });
       variant.values.push_back(value.dump());
+      edits.push_back({parameters[k].path, value.dump()});
       variant.name += fmt::format("_{}={}", file_safe(leaf_name(parameters[k].path)),
                                   file_safe(value.is_string() ? value.get<std::string>() : value.dump()));
     }
@@ -224,28 +242,24 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
       const std::string base_title = base.contains("title") && base["title"].is_string() ? base["title"].get<std::string>() : "";
       variant.title = fmt::format("{}{}sweep variant {}: {}", base_title, base_title.empty() ? "" : " - ", variant.name.substr(0, 3),
                                   settings);
-      document["title"] = variant.title;
+      edits.push_back({"title", OrderedJson(variant.title).dump()});
     }
     variant.directory = directory / variant.name;
     variant.scenario = variant.directory / "scenario.json";
-    const std::string text = document.dump(2) + "\n";
+    std::string text = as_set([&] { return edit_scenario(base_text, edits, scenario_file.string()); });
     try {
       (void)parse_scenario(text, variant.scenario.string());
     } catch (const InputError& e) {
       throw InputError(fmt::format("krug sweep: variant {} is not a valid scenario: {}", variant.name, e.what()));
     }
     variants.push_back(variant);
+    texts.push_back(std::move(text));
   }
-  for (const SweepVariant& variant : variants) {
+  for (std::size_t v = 0; v < variants.size(); ++v) {
     std::error_code error;
-    std::filesystem::create_directories(variant.directory, error);
-    if (error) throw InputError(fmt::format("{}: cannot create: {}", variant.directory.string(), error.message()));
-    OrderedJson document = base;
-    for (std::size_t k = 0; k < parameters.size(); ++k) {
-      set_path(document, parameters[k], OrderedJson::parse(variant.values[k]));
-    }
-    if (!variant.title.empty()) document["title"] = variant.title;
-    write_text_atomically(variant.scenario, document.dump(2) + "\n");
+    std::filesystem::create_directories(variants[v].directory, error);
+    if (error) throw InputError(fmt::format("{}: cannot create: {}", variants[v].directory.string(), error.message()));
+    write_text_atomically(variants[v].scenario, texts[v]);
   }
   return variants;
 }

@@ -183,3 +183,29 @@ TEST_CASE("a sweep of a penetration scenario tabulates the penetration block", "
     CHECK(std::stod(row.at("penetration_target_energy_absorbed")) > 0.0);
   }
 }
+
+TEST_CASE("edit_scenario applies edits by JSON path in memory and keeps the key order", "[app][sweep]") {
+  const std::string text = R"({"title": "t", "bodies": [{"name": "a", "initial": {"velocity": [1, 2]}}], "controls": {}})";
+  const std::string edited = krug::io::edit_scenario(
+      text, {{"bodies[0].initial.velocity[0]", "350"}, {"controls.fracture.altitude_ratio", "0.2"}, {"title", "new"}},
+      "test");
+  const auto document = nlohmann::ordered_json::parse(edited);
+  CHECK(document["bodies"][0]["initial"]["velocity"] == nlohmann::ordered_json::parse("[350, 2]"));
+  CHECK(document["controls"]["fracture"]["altitude_ratio"] == 0.2);  // a missing object is created
+  CHECK(document["title"] == "new");                                 // not JSON: taken as a string
+  CHECK(document.begin().key() == "title");                          // the order of the text
+  CHECK(edited.back() == '\n');
+  auto error_of = [&](const std::string& path) {
+    try {
+      (void)krug::io::edit_scenario(text, {{path, "1"}}, "test");
+    } catch (const krug::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(error_of("bodies[3].name"), Catch::Contains("bodies[3].name") && Catch::Contains("has 1 items"));
+  CHECK_THAT(error_of("title.x"), Catch::Contains("is not an object"));
+  CHECK_THAT(error_of("bodies.x"), Catch::Contains("is not an object"));
+  CHECK_THAT(error_of("a..b"), Catch::Contains("an empty key"));
+  CHECK_THROWS_AS(krug::io::edit_scenario("{not json", {}, "test"), krug::InputError);
+}

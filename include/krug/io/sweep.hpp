@@ -10,6 +10,22 @@
 
 namespace krug::io {
 
+// One edit of a scenario: the value at a JSON path. `path` is written like
+// materials.al6061.fracture.elongation or bodies[0].initial.velocity[0]; `value` is a JSON text
+// ("0.3", "[350, 0]", "true", "\"steel\""), and a text that is not JSON is taken as a string (steel).
+struct ScenarioEdit {
+  std::string path;
+  std::string value;
+};
+
+// The scenario `text` (JSON) with every edit applied in order, as JSON text (two-space indent, the
+// file's key order kept, a final newline). A missing object on the way is created (so a default can
+// be overridden); a missing array item, a key into something that is not an object or an index into
+// something that is not an array is an InputError naming the path. `origin` names the text in
+// messages. The result is not checked as a scenario: parse_scenario (scenario.hpp) does that.
+// Used by `krug sweep` and `krug ballistic` to make variants in memory.
+std::string edit_scenario(const std::string& text, const std::vector<ScenarioEdit>& edits, const std::string& origin);
+
 struct SweepParameter {
   std::string path;                 // as given
   std::vector<std::string> values;  // JSON texts (a value that is not JSON is taken as a string)

@@ -1,0 +1,763 @@
+// Ballistic limit: the search, the Lambert-Jonas fit, the outputs and the scenario variants.
+#include "krug/run/ballistic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "krug/core/error.hpp"
+#include "krug/io/outputs.hpp"
+#include "krug/io/sweep.hpp"
+
+namespace krug::run {
+
+namespace {
+
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// A k x k system (k <= 3) by Gaussian elimination with partial pivoting; false when singular.
+using Matrix3 = std::array<std::array<double, 3>, 3>;
+using Vector3 = std::array<double, 3>;
+bool solve(Matrix3 m, Vector3 b, int k, Vector3& x) {
+  for (int c = 0; c < k; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < k; ++r) {
+      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+    }
+    if (!(std::abs(m[pivot][c]) > 0.0)) return false;
+    std::swap(m[c], m[pivot]);
+    std::swap(b[c], b[pivot]);
+    for (int r = c + 1; r < k; ++r) {
+      const double f = m[r][c] / m[c][c];
+      for (int q = c; q < k; ++q) m[r][q] -= f * m[c][q];
+      b[r] -= f * b[c];
+    }
+  }
+  for (int r = k - 1; r >= 0; --r) {
+    double sum = b[r];
+    for (int q = r + 1; q < k; ++q) sum -= m[r][q] * x[q];
+    x[r] = sum / m[r][r];
+  }
+  return true;
+}
+
+bool counts(const BallisticOutcome& o) {
+  return o.result == ImpactResult::stopped || o.result == ImpactResult::perforated;
+}
+
+}  // namespace
+
+const char* to_string(ImpactResult result) {
+  switch (result) {
+    case ImpactResult::stopped: return "stopped";
+    case ImpactResult::perforated: return "perforated";
+    case ImpactResult::unfinished: return "unfinished";
+    case ImpactResult::failed: return "failed";
+  }
+  return "failed";
+}
+
+BallisticOutcome outcome_from_summary(const std::string& summary_json, double velocity) {
+  BallisticOutcome o;
+  o.velocity = velocity;
+  o.status = "not run";
+  Json s;
+  try {
+    s = Json::parse(summary_json);
+  } catch (const nlohmann::json::exception&) {
+    o.message = "no readable summary.json";
+    return o;
+  }
+  if (!s.is_object()) {
+    o.message = "no readable summary.json";
+    return o;
+  }
+  auto number = [](const Json& j, const char* key, double fallback = 0.0) {
+    return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+  };
+  auto text = [](const Json& j, const char* key) {
+    return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string();
+  };
+  o.status = text(s, "status");
+  o.stopped_by = text(s, "stopped_by");
+  o.message = text(s, "message");
+  o.cycles = static_cast<long>(number(s, "cycles"));
+  o.wall_seconds = number(s, "wall_seconds");
+  if (!s.contains("penetration") || !s["penetration"].is_object()) {
+    if (o.message.empty()) o.message = "the summary has no penetration block";
+    o.result = ImpactResult::failed;
+    return o;
+  }
+  const Json& p = s["penetration"];
+  o.residual_velocity = number(p, "residual_velocity");
+  o.residual_mass = number(p, "residual_mass");
+  o.initial_mass = number(p, "initial_mass");
+  o.eroded_mass = number(p, "eroded_mass");
+  o.target_energy = number(p, "target_energy_absorbed");
+  o.whole_velocity = p.contains("whole") ? number(p["whole"], "velocity", nan) : nan;
+  o.plug_mass = p.contains("plug") && p["plug"].is_object() ? number(p["plug"], "mass") : 0.0;
+  const bool final = p.contains("final") && p["final"].is_boolean() && p["final"].get<bool>();
+  const bool perforated = p.contains("perforated") && p["perforated"].is_boolean() && p["perforated"].get<bool>();
+  if (o.status != "completed") {
+    o.result = ImpactResult::failed;
+    if (o.message.empty()) o.message = "status " + o.status;
+  } else if (!final) {
+    o.result = ImpactResult::unfinished;
+    if (o.message.empty()) o.message = "ended by " + o.stopped_by + " without a final answer";
+  } else {
+    o.result = perforated ? ImpactResult::perforated : ImpactResult::stopped;
+  }
+  return o;
+}
+
+// ---- the fit ----
+
+double lambert_jonas(double v_i, double a, double p, double v_bl) {
+  if (v_i <= v_bl) return 0.0;
+  return a * std::pow(std::pow(v_i, p) - std::pow(v_bl, p), 1.0 / p);
+}
+
+CurveFit fit_lambert_jonas(const std::vector<double>& v_i, const std::vector<double>& v_r, const CurveFitOptions& options) {
+  CurveFit fit;
+  fit.velocities = v_i;
+  const std::size_t n = v_i.size();
+  fit.points = static_cast<int>(n);
+  const std::array<bool, 3> free = {options.free_a, options.free_p, options.free_v_bl};
+  const int k = static_cast<int>(std::count(free.begin(), free.end(), true));
+  fit.free_parameters = k;
+  fit.a = options.a;
+  fit.p = options.p;
+  fit.v_bl = options.v_bl;
+  if (v_r.size() != n) throw std::invalid_argument("fit_lambert_jonas: v_i and v_r differ in length");
+  if (n < static_cast<std::size_t>(std::max(k, 1))) {
+    fit.note = fmt::format("{} points for {} free parameters", n, k);
+    return fit;
+  }
+  // Work in units of the largest speed, so that v^p stays near 1.
+  const double scale = *std::max_element(v_i.begin(), v_i.end());
+  const double lowest = *std::min_element(v_i.begin(), v_i.end());
+  if (!(lowest > 0.0)) {
+    fit.note = "a speed that is not positive";
+    return fit;
+  }
+  std::vector<double> x(n), y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = v_i[i] / scale;
+    y[i] = v_r[i] / scale;
+  }
+  const double x_min = lowest / scale;
+  std::array<double, 3> theta = {options.a, options.p, std::min(options.v_bl / scale, x_min * (1.0 - 1e-6))};
+  auto feasible = [&](const std::array<double, 3>& t) {
+    return t[0] > 0.0 && t[1] >= 0.5 && t[1] <= 50.0 && t[2] >= 0.0 && t[2] < x_min;
+  };
+  if (!feasible(theta)) {
+    theta[2] = std::clamp(theta[2], 0.0, 0.999 * x_min);
+    theta[1] = std::clamp(theta[1], 0.5, 50.0);
+    if (!(theta[0] > 0.0)) theta[0] = 1.0;
+  }
+  // The start of a: linear least squares given p and v_bl.
+  if (free[0]) {
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double g = lambert_jonas(x[i], 1.0, theta[1], theta[2]);
+      num += g * y[i];
+      den += g * g;
+    }
+    if (den > 0.0 && num > 0.0) theta[0] = num / den;
+  }
+  auto residuals = [&](const std::array<double, 3>& t, std::vector<double>& r) {
+    r.resize(n);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      r[i] = y[i] - lambert_jonas(x[i], t[0], t[1], t[2]);
+      sum += r[i] * r[i];
+    }
+    return sum;
+  };
+  // J^T J and J^T r in the free parameters (J: the model's derivatives, not the residual's).
+  auto normal_equations = [&](const std::array<double, 3>& t, const std::vector<double>& r, Matrix3& A, Vector3& g) {
+    A = Matrix3{};
+    g = Vector3{};
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = t[0], p = t[1], b = t[2];
+      const double u = std::pow(x[i], p) - std::pow(b, p);
+      const double f = a * std::pow(u, 1.0 / p);
+      const double d_a = std::pow(u, 1.0 / p);
+      const double b_log = b > 0.0 ? std::pow(b, p) * std::log(b) : 0.0;
+      const double d_p = f * (-std::log(u) / (p * p) + (std::pow(x[i], p) * std::log(x[i]) - b_log) / (p * u));
+      const double d_b = b > 0.0 ? -a * std::pow(b, p - 1.0) * std::pow(u, 1.0 / p - 1.0) : 0.0;
+      const std::array<double, 3> all = {d_a, d_p, d_b};
+      Vector3 d{};
+      int c = 0;
+      for (std::size_t q = 0; q < 3; ++q) {
+        if (free[q]) d[static_cast<std::size_t>(c++)] = all[q];
+      }
+      for (int q = 0; q < k; ++q) {
+        g[q] += d[q] * r[i];
+        for (int s = 0; s < k; ++s) A[q][s] += d[q] * d[s];
+      }
+    }
+  };
+  std::vector<double> r;
+  double cost = residuals(theta, r);
+  double lambda = 1e-3;
+  bool converged = false;
+  int iteration = 0;
+  Matrix3 A;
+  Vector3 g;
+  for (; iteration < options.max_iterations && k > 0; ++iteration) {
+    normal_equations(theta, r, A, g);
+    bool accepted = false;
+    for (int attempt = 0; attempt < 40; ++attempt) {
+      Matrix3 M = A;
+      for (int q = 0; q < k; ++q) M[q][q] += lambda * std::max(A[q][q], 1e-12);
+      Vector3 delta{};
+      std::array<double, 3> trial = theta;
+      double step = 0.0;
+      if (solve(M, g, k, delta)) {
+        int c = 0;
+        for (std::size_t q = 0; q < 3; ++q) {
+          if (free[q]) {
+            step += delta[static_cast<std::size_t>(c)] * delta[static_cast<std::size_t>(c)];
+            trial[q] += delta[static_cast<std::size_t>(c++)];
+          }
+        }
+      }
+      std::vector<double> r_trial;
+      const double cost_trial = step > 0.0 && feasible(trial) ? residuals(trial, r_trial) : std::numeric_limits<double>::infinity();
+      if (std::isfinite(cost_trial) && cost_trial <= cost) {
+        const double change = cost - cost_trial;
+        theta = trial;
+        r = r_trial;
+        cost = cost_trial;
+        lambda = std::max(lambda / 10.0, 1e-12);
+        accepted = true;
+        if (change <= 1e-14 * std::max(cost, 1e-300) || std::sqrt(step) < 1e-12) converged = true;
+        break;
+      }
+      lambda *= 10.0;
+      if (lambda > 1e16) break;
+    }
+    if (!accepted) {  // no step lowers the cost: a minimum (within the bounds)
+      converged = true;
+      break;
+    }
+    if (converged) break;
+  }
+  if (k == 0) converged = true;
+  fit.iterations = iteration;
+  fit.a = theta[0];
+  fit.p = theta[1];
+  fit.v_bl = theta[2] * scale;
+  fit.residuals.resize(n);
+  for (std::size_t i = 0; i < n; ++i) fit.residuals[i] = r[i] * scale;
+  fit.rms = std::sqrt(cost / static_cast<double>(n)) * scale;
+  if (!converged) {
+    fit.note = fmt::format("did not converge in {} iterations", options.max_iterations);
+    return fit;
+  }
+  // A minimum on a bound (v_bl at the lowest speed, p at 0.5 or 50) is no fit: the points do not
+  // determine the parameter there, and the linearised uncertainties would be meaningless.
+  if ((free[2] && theta[2] >= x_min * (1.0 - 1e-6)) || (free[1] && (theta[1] <= 0.5 + 1e-9 || theta[1] >= 50.0 - 1e-9))) {
+    fit.note = fmt::format("the minimum lies on a bound (v_bl = {:.2f} m/s, p = {:.3g}): the points do not determine the "
+                           "curve",
+                           fit.v_bl, fit.p);
+    return fit;
+  }
+  fit.valid = true;
+  const std::array<double, 3> unit = {1.0, 1.0, scale};  // back to m/s for v_bl
+  for (auto& row : fit.covariance) row.fill(0.0);
+  if (static_cast<int>(n) > k && k > 0) {
+    normal_equations(theta, r, A, g);
+    const double s2 = cost / static_cast<double>(static_cast<int>(n) - k);
+    Matrix3 inverse{};
+    for (int col = 0; col < k; ++col) {
+      Vector3 e{}, column{};
+      e[static_cast<std::size_t>(col)] = 1.0;
+      if (!solve(A, e, k, column)) {
+        fit.valid = false;
+        fit.note = "singular normal equations: the parameters are not determined by these points";
+        return fit;
+      }
+      for (int row = 0; row < k; ++row) inverse[static_cast<std::size_t>(row)][static_cast<std::size_t>(col)] = column[static_cast<std::size_t>(row)];
+    }
+    std::size_t cq = 0;
+    for (std::size_t q = 0; q < 3; ++q) {
+      if (!free[q]) continue;
+      std::size_t cs = 0;
+      for (std::size_t s = 0; s < 3; ++s) {
+        if (!free[s]) continue;
+        fit.covariance[q][s] = s2 * inverse[cq][cs] * unit[q] * unit[s];
+        ++cs;
+      }
+      ++cq;
+    }
+  } else if (k > 0) {
+    for (auto& row : fit.covariance) row.fill(nan);
+    fit.note = "as many points as free parameters: no uncertainties";
+  }
+  fit.sigma_a = free[0] ? std::sqrt(fit.covariance[0][0]) : 0.0;
+  fit.sigma_p = free[1] ? std::sqrt(fit.covariance[1][1]) : 0.0;
+  fit.sigma_v_bl = free[2] ? std::sqrt(fit.covariance[2][2]) : 0.0;
+  return fit;
+}
+
+// ---- the search ----
+
+namespace {
+
+// `count` new points in (low, high), spread over the gaps between low, the `taken` points inside and
+// high: each goes to the gap that would be left widest, and a gap with m points is cut in m + 1
+// equal parts (with nothing taken, an equal N-section).
+std::vector<double> fill_gaps(double low, double high, std::vector<double> taken, int count) {
+  std::vector<double> edges = {low, high};
+  for (double v : taken) {
+    if (v > low && v < high) edges.push_back(v);
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<int> assigned(edges.size() - 1, 0);
+  for (int c = 0; c < count; ++c) {
+    std::size_t best = 0;
+    double widest = -1.0;
+    for (std::size_t g = 0; g + 1 < edges.size(); ++g) {
+      const double part = (edges[g + 1] - edges[g]) / (assigned[g] + 2);
+      if (part > widest) {
+        widest = part;
+        best = g;
+      }
+    }
+    ++assigned[best];
+  }
+  std::vector<double> points;
+  for (std::size_t g = 0; g + 1 < edges.size(); ++g) {
+    for (int m = 1; m <= assigned[g]; ++m) {
+      points.push_back(edges[g] + (edges[g + 1] - edges[g]) * m / (assigned[g] + 1));
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+BallisticStudy ballistic_search(const BallisticOptions& options, const BallisticEvaluate& evaluate,
+                                const std::function<void(const BallisticStudy&)>& on_round) {
+  if (!(options.v_min > 0.0) || !(options.v_max > options.v_min)) {
+    throw InputError(fmt::format("ballistic: the speed range must satisfy 0 < MIN < MAX (got {}, {})", options.v_min,
+                                 options.v_max));
+  }
+  if (!(options.tolerance > 0.0)) throw InputError("ballistic: the tolerance must be positive");
+  if (options.batch < 1) throw InputError("ballistic: the batch must be at least 1");
+  if (options.points_above < 0) throw InputError("ballistic: --points-above must not be negative");
+  BallisticStudy study;
+  study.options = options;
+  const double quantum = options.velocity_quantum > 0.0 ? options.velocity_quantum : 0.01;
+  int round = 0;
+  auto already = [&](double v) {
+    return std::any_of(study.runs.begin(), study.runs.end(),
+                       [&](const BallisticOutcome& o) { return std::abs(o.velocity - v) < 0.5 * quantum; });
+  };
+  // Runs a batch (rounded, new speeds only); false when nothing was left to run.
+  auto run_batch = [&](const std::vector<double>& wanted) {
+    std::vector<double> speeds;
+    for (double v : wanted) {
+      const double rounded = std::round(v / quantum) * quantum;
+      if (rounded <= 0.0 || already(rounded)) continue;
+      if (std::any_of(speeds.begin(), speeds.end(), [&](double s) { return std::abs(s - rounded) < 0.5 * quantum; })) continue;
+      speeds.push_back(rounded);
+    }
+    const std::size_t room = static_cast<std::size_t>(std::max(0, options.max_runs - static_cast<int>(study.runs.size())));
+    if (speeds.size() > room) speeds.resize(room);
+    if (speeds.empty()) return false;
+    std::vector<BallisticOutcome> outcomes = evaluate(speeds);
+    if (outcomes.size() != speeds.size()) throw std::logic_error("ballistic: the evaluator returned a wrong count");
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      outcomes[i].velocity = speeds[i];
+      study.runs.push_back(outcomes[i]);
+      study.round.push_back(round);
+    }
+    if (on_round) on_round(study);
+    ++round;
+    return true;
+  };
+  auto note = [&](std::string text) {
+    if (std::find(study.notes.begin(), study.notes.end(), text) == study.notes.end()) study.notes.push_back(std::move(text));
+  };
+
+  // Round 0: the ends of the range and, with more workers, points between them.
+  {
+    const int n = std::max(2, options.batch);
+    std::vector<double> speeds;
+    for (int i = 0; i < n; ++i) speeds.push_back(options.v_min + (options.v_max - options.v_min) * i / (n - 1));
+    run_batch(speeds);
+  }
+  // Bisection (N-section) of the bracket.
+  double last_width = std::numeric_limits<double>::infinity();
+  int idle_rounds = 0;
+  for (;;) {
+    double low = -1.0, high = std::numeric_limits<double>::infinity();
+    for (const BallisticOutcome& o : study.runs) {
+      if (o.result == ImpactResult::perforated) high = std::min(high, o.velocity);
+    }
+    for (const BallisticOutcome& o : study.runs) {
+      if (o.result == ImpactResult::stopped && o.velocity < high) low = std::max(low, o.velocity);
+    }
+    if (!std::isfinite(high)) {
+      note(fmt::format("no run perforated up to {:.2f} m/s: the ballistic limit is above the range, or the runs there "
+                       "did not finish",
+                       options.v_max));
+      break;
+    }
+    if (low < 0.0) {
+      note(fmt::format("no run stopped below the slowest perforation ({:.2f} m/s): the ballistic limit is below the "
+                       "range, or the runs there did not finish",
+                       high));
+      break;
+    }
+    study.bracketed = true;
+    study.bracket_low = low;
+    study.bracket_high = high;
+    // Runs without an answer inside the bracket: said, and left out.
+    std::vector<double> unknown;
+    for (const BallisticOutcome& o : study.runs) {
+      if (!counts(o) && o.velocity > low && o.velocity < high) {
+        unknown.push_back(o.velocity);
+        note(fmt::format("the run at {:.2f} m/s inside the bracket {}: not counted, the search goes around it",
+                         o.velocity, o.result == ImpactResult::failed ? "failed" : "ended without a final answer"));
+      }
+    }
+    if (high - low <= options.tolerance) {
+      study.converged = true;
+      break;
+    }
+    if (high - low < last_width) {
+      last_width = high - low;
+      idle_rounds = 0;
+    } else if (++idle_rounds >= 3) {
+      note(fmt::format("the bracket [{:.2f}, {:.2f}] m/s could not be narrowed: three rounds of runs inside it gave no "
+                       "answer",
+                       low, high));
+      break;
+    }
+    if (static_cast<int>(study.runs.size()) >= options.max_runs) {
+      note(fmt::format("stopped at the bound of {} runs", options.max_runs));
+      break;
+    }
+    if (!run_batch(fill_gaps(low, high, unknown, options.batch))) {
+      note(fmt::format("the bracket [{:.2f}, {:.2f}] m/s is as narrow as the speeds' rounding allows", low, high));
+      break;
+    }
+  }
+  // Points above the bracket for the fit.
+  const double upper_start = study.bracketed ? study.bracket_high : options.v_min;
+  auto perforations_above = [&]() {
+    std::vector<double> above;
+    for (const BallisticOutcome& o : study.runs) {
+      if (o.result == ImpactResult::perforated && o.velocity > upper_start + 0.5 * quantum) above.push_back(o.velocity);
+    }
+    return above;
+  };
+  bool any_perforation = std::any_of(study.runs.begin(), study.runs.end(),
+                                     [](const BallisticOutcome& o) { return o.result == ImpactResult::perforated; });
+  for (int attempt = 0; any_perforation && attempt < 3; ++attempt) {
+    const std::vector<double> above = perforations_above();
+    const int missing = options.points_above - static_cast<int>(above.size());
+    if (missing <= 0) break;
+    std::vector<double> taken;
+    for (const BallisticOutcome& o : study.runs) {
+      if (o.velocity > upper_start) taken.push_back(o.velocity);
+    }
+    // Up to the range's top, or beyond the fastest run when the top is taken.
+    if (!run_batch(fill_gaps(upper_start, options.v_max, taken, missing))) break;
+  }
+  if (any_perforation && static_cast<int>(perforations_above().size()) < options.points_above) {
+    note(fmt::format("only {} perforating runs above {:.2f} m/s, {} wanted", perforations_above().size(), upper_start,
+                     options.points_above));
+  }
+  // The figures.
+  double highest_stop = -1.0, lowest_perforation = std::numeric_limits<double>::infinity();
+  for (const BallisticOutcome& o : study.runs) {
+    if (o.result == ImpactResult::stopped) highest_stop = std::max(highest_stop, o.velocity);
+    if (o.result == ImpactResult::perforated) lowest_perforation = std::min(lowest_perforation, o.velocity);
+  }
+  if (study.bracketed) {
+    study.highest_stop = highest_stop;
+    study.lowest_perforation = lowest_perforation;
+    study.v50 = 0.5 * (highest_stop + lowest_perforation);
+    study.v_bl = 0.5 * (study.bracket_low + study.bracket_high);
+    if (highest_stop > lowest_perforation) {
+      note(fmt::format("a zone of mixed results: a stop at {:.2f} m/s above the perforation at {:.2f} m/s",
+                       highest_stop, lowest_perforation));
+    }
+  }
+  // The fits, on the perforating runs.
+  std::vector<double> v_i, v_r;
+  double plug_sum = 0.0;
+  for (const BallisticOutcome& o : study.runs) {
+    if (o.initial_mass > 0.0) study.projectile_mass = o.initial_mass;
+    if (o.result != ImpactResult::perforated) continue;
+    v_i.push_back(o.velocity);
+    v_r.push_back(o.residual_velocity);
+    plug_sum += o.plug_mass;
+  }
+  if (!v_i.empty()) {
+    study.mean_plug_mass = plug_sum / static_cast<double>(v_i.size());
+    const double lowest = *std::min_element(v_i.begin(), v_i.end());
+    CurveFitOptions start;
+    start.v_bl = study.bracketed ? std::min(study.v_bl, 0.999 * lowest) : 0.9 * lowest;
+    if (v_i.size() >= 4) {
+      study.fit = fit_lambert_jonas(v_i, v_r, start);
+    } else {
+      start.free_p = false;
+      study.fit = fit_lambert_jonas(v_i, v_r, start);
+      study.fit.note = fmt::format("{} perforating runs: p fixed at 2{}", v_i.size(),
+                                   study.fit.note.empty() ? "" : "; " + study.fit.note);
+    }
+    if (study.projectile_mass > 0.0) {
+      CurveFitOptions ri;
+      ri.free_a = false;
+      ri.free_p = false;
+      ri.a = study.projectile_mass / (study.projectile_mass + study.mean_plug_mass);
+      ri.p = 2.0;
+      ri.v_bl = start.v_bl;
+      study.recht_ipson = fit_lambert_jonas(v_i, v_r, ri);
+    } else {
+      study.recht_ipson.note = "no projectile mass known";
+    }
+  } else {
+    study.fit.note = "no perforating run";
+    study.recht_ipson.note = "no perforating run";
+  }
+  return study;
+}
+
+// ---- outputs ----
+
+namespace {
+
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json fit_json(const CurveFit& fit) {
+  Json j;
+  j["valid"] = fit.valid;
+  j["note"] = fit.note;
+  j["a"] = number_or_null(fit.a);
+  j["p"] = number_or_null(fit.p);
+  j["v_bl"] = number_or_null(fit.v_bl);
+  j["sigma_a"] = number_or_null(fit.sigma_a);
+  j["sigma_p"] = number_or_null(fit.sigma_p);
+  j["sigma_v_bl"] = number_or_null(fit.sigma_v_bl);
+  Json covariance = Json::array();
+  for (const auto& row : fit.covariance) {
+    Json r = Json::array();
+    for (double v : row) r.push_back(number_or_null(v));
+    covariance.push_back(r);
+  }
+  j["covariance"] = covariance;
+  j["points"] = fit.points;
+  j["free_parameters"] = fit.free_parameters;
+  j["iterations"] = fit.iterations;
+  j["rms"] = number_or_null(fit.rms);
+  Json residuals = Json::array();
+  for (std::size_t i = 0; i < fit.residuals.size(); ++i) {
+    residuals.push_back({{"velocity", fit.velocities[i]}, {"residual", number_or_null(fit.residuals[i])}});
+  }
+  j["residuals"] = residuals;
+  return j;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c == '\n' ? ' ' : c;
+  }
+  return quoted + "\"";
+}
+
+std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); }
+
+}  // namespace
+
+void write_ballistic_results(const std::filesystem::path& directory, const BallisticStudy& study,
+                             const std::string& scenario) {
+  std::vector<std::size_t> order(study.runs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t i, std::size_t j) { return study.runs[i].velocity < study.runs[j].velocity; });
+  std::string csv =
+      "velocity,result,perforated,final,residual_velocity,whole_velocity,residual_mass,initial_mass,plug_mass,"
+      "eroded_mass,target_energy_absorbed,status,stopped_by,cycles,wall_seconds,round,directory,message\n";
+  for (std::size_t i : order) {
+    const BallisticOutcome& o = study.runs[i];
+    const bool answered = counts(o);
+    const bool has_figures = o.result != ImpactResult::failed || o.status == "failed";
+    csv += fmt::format("{:.2f},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.velocity, to_string(o.result),
+                       answered ? (o.result == ImpactResult::perforated ? "true" : "false") : "",
+                       answered ? "true" : "false",
+                       has_figures ? csv_number(o.residual_velocity) : "", has_figures ? csv_number(o.whole_velocity) : "",
+                       has_figures ? csv_number(o.residual_mass) : "", has_figures ? csv_number(o.initial_mass) : "",
+                       has_figures ? csv_number(o.plug_mass) : "", has_figures ? csv_number(o.eroded_mass) : "",
+                       has_figures ? csv_number(o.target_energy) : "", csv_field(o.status), csv_field(o.stopped_by),
+                       o.cycles, csv_number(o.wall_seconds), study.round[i], csv_field(o.directory),
+                       csv_field(o.message));
+  }
+  io::write_text_atomically(directory / "ballistic.csv", csv);
+
+  Json j;
+  j["scenario"] = scenario;
+  j["range"] = {study.options.v_min, study.options.v_max};
+  j["tolerance"] = study.options.tolerance;
+  j["points_above"] = study.options.points_above;
+  j["batch"] = study.options.batch;
+  j["runs"] = study.runs.size();
+  std::size_t stopped = 0, perforated = 0, unfinished = 0, failed = 0;
+  double seconds = 0.0;
+  for (const BallisticOutcome& o : study.runs) {
+    stopped += o.result == ImpactResult::stopped;
+    perforated += o.result == ImpactResult::perforated;
+    unfinished += o.result == ImpactResult::unfinished;
+    failed += o.result == ImpactResult::failed;
+    seconds += o.wall_seconds;
+  }
+  j["counts"] = {{"stopped", stopped}, {"perforated", perforated}, {"unfinished", unfinished}, {"failed", failed}};
+  j["run_seconds"] = seconds;
+  j["rounds"] = study.round.empty() ? 0 : study.round.back() + 1;
+  j["bracketed"] = study.bracketed;
+  j["converged"] = study.converged;
+  if (study.bracketed) {
+    j["bracket"] = {study.bracket_low, study.bracket_high};
+    j["v_bl"] = study.v_bl;
+    j["v_bl_half_width"] = 0.5 * (study.bracket_high - study.bracket_low);
+    j["highest_stop"] = study.highest_stop;
+    j["lowest_perforation"] = study.lowest_perforation;
+    j["v50"] = study.v50;
+  } else {
+    j["bracket"] = nullptr;
+    j["v_bl"] = nullptr;
+    j["v50"] = nullptr;
+  }
+  j["lambert_jonas"] = fit_json(study.fit);
+  Json ri = fit_json(study.recht_ipson);
+  ri["projectile_mass"] = study.projectile_mass;
+  ri["mean_plug_mass"] = study.mean_plug_mass;
+  j["recht_ipson"] = ri;
+  j["notes"] = study.notes;
+  io::write_text_atomically(directory / "ballistic.json", j.dump(2) + "\n");
+}
+
+std::vector<std::string> ballistic_summary_lines(const BallisticStudy& study) {
+  std::vector<std::string> lines;
+  std::size_t stopped = 0, perforated = 0, other = 0;
+  double seconds = 0.0;
+  for (const BallisticOutcome& o : study.runs) {
+    stopped += o.result == ImpactResult::stopped;
+    perforated += o.result == ImpactResult::perforated;
+    other += !counts(o);
+    seconds += o.wall_seconds;
+  }
+  lines.push_back(fmt::format("{} runs ({} stopped, {} perforated, {} without an answer), {:.1f} s of runs", study.runs.size(),
+                              stopped, perforated, other, seconds));
+  if (study.bracketed) {
+    lines.push_back(fmt::format("ballistic limit V_bl = {:.1f} +- {:.1f} m/s (bracket {:.2f} to {:.2f} m/s{})", study.v_bl,
+                                0.5 * (study.bracket_high - study.bracket_low), study.bracket_low, study.bracket_high,
+                                study.converged ? "" : ", wider than the tolerance"));
+    lines.push_back(fmt::format("V50 = {:.1f} m/s (highest stop {:.2f}, lowest perforation {:.2f} m/s)", study.v50,
+                                study.highest_stop, study.lowest_perforation));
+  } else {
+    lines.push_back("no ballistic limit in the range");
+  }
+  if (study.fit.valid) {
+    lines.push_back(fmt::format("Lambert-Jonas fit on {} points: v_bl = {:.1f} +- {:.1f} m/s, a = {:.3f} +- {:.3f}, p = {:.2f} "
+                                "+- {:.2f}, rms {:.2f} m/s{}",
+                                study.fit.points, study.fit.v_bl, study.fit.sigma_v_bl, study.fit.a, study.fit.sigma_a,
+                                study.fit.p, study.fit.sigma_p, study.fit.rms,
+                                study.fit.note.empty() ? "" : " (" + study.fit.note + ")"));
+  } else {
+    lines.push_back("Lambert-Jonas fit: none (" + study.fit.note + ")");
+  }
+  if (study.recht_ipson.valid) {
+    lines.push_back(fmt::format("Recht-Ipson reference (p = 2, a = m_p/(m_p + m_plug) = {:.3f}, mean plug {:.4g} g): v_bl = "
+                                "{:.1f} +- {:.1f} m/s, rms {:.2f} m/s",
+                                study.recht_ipson.a, study.mean_plug_mass * 1e3, study.recht_ipson.v_bl,
+                                study.recht_ipson.sigma_v_bl, study.recht_ipson.rms));
+  } else {
+    lines.push_back("Recht-Ipson reference: none (" + study.recht_ipson.note + ")");
+  }
+  for (const std::string& n : study.notes) lines.push_back("note: " + n);
+  return lines;
+}
+
+// ---- the scenario variants ----
+
+BallisticProjectile ballistic_projectile(const std::string& scenario_text, const std::string& origin) {
+  Json s;
+  try {
+    s = Json::parse(scenario_text);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not JSON: {}", origin, e.what()));
+  }
+  if (!s.is_object() || !s.contains("penetration") || !s["penetration"].is_object() ||
+      !s["penetration"].contains("projectile") || !s["penetration"]["projectile"].is_string()) {
+    throw InputError(fmt::format("{}: krug ballistic needs a scenario with a \"penetration\" block naming the projectile "
+                                 "(docs/scenario-format.md, Penetration)",
+                                 origin));
+  }
+  BallisticProjectile projectile;
+  projectile.name = s["penetration"]["projectile"].get<std::string>();
+  if (!s.contains("bodies") || !s["bodies"].is_array()) throw InputError(fmt::format("{}: no \"bodies\" array", origin));
+  bool found = false;
+  for (std::size_t k = 0; k < s["bodies"].size(); ++k) {
+    const Json& body = s["bodies"][k];
+    if (body.is_object() && body.contains("name") && body["name"] == projectile.name) {
+      projectile.body = k;
+      found = true;
+      break;
+    }
+  }
+  if (!found) throw InputError(fmt::format("{}: penetration.projectile \"{}\" is not a body", origin, projectile.name));
+  const std::string where = fmt::format("bodies[{}].initial.velocity", projectile.body);
+  const Json& body = s["bodies"][projectile.body];
+  if (!body.contains("initial") || !body["initial"].is_object() || !body["initial"].contains("velocity")) {
+    throw InputError(fmt::format("{}: {} is missing: the projectile must be given an initial velocity", origin, where));
+  }
+  const Json& v = body["initial"]["velocity"];
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+    throw InputError(fmt::format("{}: {} is {}: krug ballistic scales a velocity given as two numbers [first, second] "
+                                 "(m/s); an expression cannot be scaled safely",
+                                 origin, where, v.dump()));
+  }
+  projectile.velocity = {v[0].get<double>(), v[1].get<double>()};
+  projectile.speed = std::hypot(projectile.velocity[0], projectile.velocity[1]);
+  if (!(projectile.speed > 0.0)) throw InputError(fmt::format("{}: {} is zero: no direction to scale", origin, where));
+  projectile.end_time = s.contains("end_time") && s["end_time"].is_number() ? s["end_time"].get<double>() : 0.0;
+  return projectile;
+}
+
+std::string ballistic_variant(const std::string& scenario_text, const BallisticProjectile& projectile, double speed,
+                              bool scale_end_time, const std::string& origin) {
+  const double factor = speed / projectile.speed;
+  const OrderedJson velocity = {projectile.velocity[0] * factor, projectile.velocity[1] * factor};
+  std::vector<io::ScenarioEdit> edits = {
+      {fmt::format("bodies[{}].initial.velocity", projectile.body), velocity.dump()}};
+  if (scale_end_time && speed < projectile.speed && projectile.end_time > 0.0) {
+    edits.push_back({"end_time", OrderedJson(projectile.end_time * projectile.speed / speed).dump()});
+  }
+  const OrderedJson document = OrderedJson::parse(scenario_text);
+  const std::string base_title = document.contains("title") && document["title"].is_string()
+                                     ? document["title"].get<std::string>()
+                                     : std::string();
+  const std::string title = fmt::format("{}{}ballistic run at {:.2f} m/s", base_title, base_title.empty() ? "" : " - ", speed);
+  edits.push_back({"title", OrderedJson(title).dump()});
+  return io::edit_scenario(scenario_text, edits, origin);
+}
+
+std::string ballistic_run_name(double speed) { return fmt::format("v{:07.2f}", speed); }
+
+}  // namespace krug::run
