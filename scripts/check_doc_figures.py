@@ -10,8 +10,8 @@ A quoted figure carries its source right after it, as an HTML comment (invisible
 FILE is relative to the page's folder's `validation/` subfolder (or to the page itself when it has a
 `/`); RUN is the value of the CSV's first column; COLUMN a column name. The figure must equal the CSV
 value rounded to the figure's own number of decimals (a figure written 0.18 is checked to 2
-decimals). Optional forms of COLUMN: `a-b` (the difference of two rows' values is given with the
-first RUN `r1-r2`), `x1000` (a value in g from kg, ...), `abs`. Every number inside a section named
+decimals). RUN may be `r1:r2`, the difference of two rows' values (r1 minus r2); COLUMN may end in
+`xN`, the value times N (x100: a fraction in per cent; x1000: g from kg). Every number inside a section named
 with --require-section must carry a source, except years, counts written with a thin space, and
 numbers inside a `<!-- no-csv -->` ... `<!-- /no-csv -->` span; so a headline cannot quote a figure that
 no table backs.
@@ -42,14 +42,15 @@ def load(path, cache):
 
 
 def value_of(rows, run, column):
-    if "-" in run and run not in rows:
-        a, b = run.split("-", 1)
+    if ":" in run:
+        a, b = run.split(":", 1)
         return value_of(rows, a, column) - value_of(rows, b, column)
     if run not in rows:
         raise KeyError(f"no row {run!r}")
     scale = 1.0
-    if column.endswith("x1000"):
-        column, scale = column[: -len("x1000")], 1000.0
+    suffix = re.search(r"x(\d+)$", column)
+    if suffix:
+        column, scale = column[: suffix.start()], float(suffix.group(1))
     if column not in rows[run]:
         raise KeyError(f"no column {column!r}")
     return scale * float(rows[run][column])

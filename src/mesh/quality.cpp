@@ -51,6 +51,32 @@ ZoneQuality zone_quality(const Mesh& mesh, Index zone_begin, Index zone_end) {
 
 std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_begin, Index node_end, Index zone_begin,
                                                  Index zone_end, double depth_fraction) {
+  std::vector<Vec2> points;
+  points.reserve(static_cast<std::size_t>(std::max<Index>(node_end - node_begin, 0)));
+  for (Index n = node_begin; n < node_end; ++n) points.push_back(mesh.nodes.position(n));
+  std::optional<NodeInZone> found = find_point_inside_zones(mesh, points, zone_begin, zone_end, depth_fraction);
+  if (found) found->node += node_begin;
+  return found;
+}
+
+std::optional<NodeInZone> find_zone_centre_inside_zones(const Mesh& mesh, Index centre_begin, Index centre_end,
+                                                        Index zone_begin, Index zone_end, double depth_fraction) {
+  std::vector<Vec2> points;
+  std::vector<Index> zone_of;
+  for (Index z = centre_begin; z < centre_end; ++z) {
+    if (!mesh.zones.active[z]) continue;
+    Vec2 centre{0.0, 0.0};
+    for (const Vec2& c : mesh.corner_positions(z)) centre += 0.25 * c;
+    points.push_back(centre);
+    zone_of.push_back(z);
+  }
+  std::optional<NodeInZone> found = find_point_inside_zones(mesh, points, zone_begin, zone_end, depth_fraction);
+  if (found) found->node = zone_of[static_cast<std::size_t>(found->node)];
+  return found;
+}
+
+std::optional<NodeInZone> find_point_inside_zones(const Mesh& mesh, const std::vector<Vec2>& points, Index zone_begin,
+                                                  Index zone_end, double depth_fraction) {
   // Bounding box of the zones, and their mean size for the bucket width.
   Vec2 low{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   Vec2 high = -low;
@@ -66,10 +92,10 @@ std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_be
     ++zone_count;
   }
   if (zone_count == 0) return std::nullopt;
-  if (!mesh.zones.neighbours_built) throw std::logic_error("find_node_inside_zones: build_edge_continuations first");
+  if (!mesh.zones.neighbours_built) throw std::logic_error("find_point_inside_zones: build_edge_continuations first");
   std::vector<Index> candidates;
-  for (Index n = node_begin; n < node_end; ++n) {
-    const Vec2 p = mesh.nodes.position(n);
+  for (Index n = 0; n < static_cast<Index>(points.size()); ++n) {
+    const Vec2 p = points[static_cast<std::size_t>(n)];
     if (p.x > low.x && p.x < high.x && p.y > low.y && p.y < high.y) candidates.push_back(n);
   }
   if (candidates.empty()) return std::nullopt;
@@ -86,7 +112,7 @@ std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_be
   std::vector<Index> start(static_cast<std::size_t>(nx * ny + 1), 0);
   std::vector<Index> cell_of_node(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const Vec2 p = mesh.nodes.position(candidates[i]);
+    const Vec2 p = points[static_cast<std::size_t>(candidates[i])];
     cell_of_node[i] = cell_of(p.x, low.x, high.x - low.x, nx) + nx * cell_of(p.y, low.y, high.y - low.y, ny);
     ++start[static_cast<std::size_t>(cell_of_node[i] + 1)];
   }
@@ -117,7 +143,7 @@ std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_be
         const Index cell = i + nx * j;
         for (Index k = start[static_cast<std::size_t>(cell)]; k < start[static_cast<std::size_t>(cell + 1)]; ++k) {
           const Index n = sorted[static_cast<std::size_t>(k)];
-          const Vec2 p = mesh.nodes.position(n);
+          const Vec2 p = points[static_cast<std::size_t>(n)];
           // Inside (or on) every interior edge, and deeper than the margin behind every boundary edge.
           double depth = std::numeric_limits<double>::infinity();
           bool inside = true;

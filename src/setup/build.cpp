@@ -330,7 +330,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
                    setup.mesh, constraints, held_by, where.back());
     setup.bodies.push_back(body);
   }
-  // Bodies may touch but not overlap: a node of one inside a zone of another is an input error.
+  // Bodies may touch but not overlap: a node or a zone centre of one inside a zone of another is an input error.
   build_edge_continuations(setup.mesh);
   for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
     for (std::size_t j = 0; j < setup.bodies.size(); ++j) {
@@ -343,6 +343,16 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
             "{} (\"{}\") overlaps {} (\"{}\"): its node at ({:.6g}, {:.6g}) lies {:.3g} m inside "
             "zone {} of \"{}\"; bodies may touch but not overlap (check the meshes' positions)",
             where[i], a.name, where[j], b.name, p.x, p.y, overlap->depth, overlap->zone - b.zone_begin, b.name));
+      }
+      if (const auto overlap = find_zone_centre_inside_zones(setup.mesh, a.zone_begin, a.zone_end, b.zone_begin, b.zone_end)) {
+        Vec2 centre{0.0, 0.0};
+        for (const Vec2& c : setup.mesh.corner_positions(overlap->node)) centre += 0.25 * c;
+        throw InputError(fmt::format(
+            "{} (\"{}\") overlaps {} (\"{}\"): the centre ({:.6g}, {:.6g}) of its zone {} lies {:.3g} m inside zone {} "
+            "of \"{}\" (the two meshes share nodes or coincide); bodies may touch but not overlap (check the meshes' "
+            "positions)",
+            where[i], a.name, where[j], b.name, centre.x, centre.y, overlap->node - a.zone_begin, overlap->depth,
+            overlap->zone - b.zone_begin, b.name));
       }
     }
   }

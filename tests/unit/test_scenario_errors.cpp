@@ -157,6 +157,19 @@ TEST_CASE("physically impossible scenarios are refused with the values that make
     CHECK_THAT(e, Catch::Contains("bodies[0] (\"left\") overlaps bodies[1] (\"right\")"));
     CHECK_THAT(e, Catch::Contains("0.001 m inside"));
   }
+  SECTION("bodies whose nodes coincide overlap too") {
+    // Two identical strips one zone thick (4 x 1 zones): every node of each lies on a boundary edge of
+    // the other, none strictly inside a zone (the node test passes them), but every zone centre lies
+    // inside the other strip's zone; the deepest reported: zone 1's centre (3.75, 5) mm, 5 mm from the
+    // strip's faces y = 0 and y = 10 mm (its sides x = 2.5 and 5 mm are interior edges).
+    std::string same = replaced(two_blocks(0.0), "\"to\": 0.02", "\"to\": 0.01");
+    for (int body = 0; body < 2; ++body) {
+      same = replaced(same, "\"y\": { \"from\": 0, \"to\": 0.01, \"zones\": 4 }", "\"y\": { \"from\": 0, \"to\": 0.01, \"zones\": 1 }");
+    }
+    const std::string e = error_of(same);
+    CHECK_THAT(e, Catch::Contains("bodies[0] (\"left\") overlaps bodies[1] (\"right\")"));
+    CHECK_THAT(e, Catch::Contains("the centre (0.00375, 0.005) of its zone 1 lies 0.005 m inside zone 1"));
+  }
   SECTION("a shear modulus in the wrong units gives a negative Poisson ratio") {
     // K = 73 GPa with mu = 260 GPa (a slipped exponent): nu = (219 - 520) / (2 (219 + 260)) = -0.314.
     const std::string e = error_of(replaced(two_blocks(0.01), "2.6e10", "2.6e11"));

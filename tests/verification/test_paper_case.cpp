@@ -165,6 +165,11 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
   CHECK(run.penetration.mass_lost == Approx(run.penetration.eroded_mass).margin(1e-12));
   CHECK(run.penetration.eroded_mass < 0.2 * run.penetration.initial_mass);
   CHECK(run.penetration.target_energy_absorbed > 0.0);
+  // The whole bullet (every node and free element of its lead) keeps all its mass on the books, and it
+  // has lost speed too.
+  CHECK(run.penetration.whole_mass == Approx(run.penetration.initial_mass).epsilon(1e-12));
+  CHECK(run.penetration.whole_velocity_loss > 0.0);
+  CHECK(run.penetration.piece_velocity_loss == Approx(loss).margin(1e-12));
   // Ledgers, with the eroded lead booked as particles (mass, momentum) and converted energy.
   CHECK(run.mass_error < 1e-12);
   CHECK(run.momentum_error < 1e-9);

@@ -14,6 +14,7 @@
 // +infinity for a zone of non-positive area.
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/quad.hpp"
@@ -55,5 +56,14 @@ struct NodeInZone {
 };
 std::optional<NodeInZone> find_node_inside_zones(const Mesh& mesh, Index node_begin, Index node_end, Index zone_begin,
                                                  Index zone_end, double depth_fraction = 1e-3);
+// The same for arbitrary points (NodeInZone::node is then the point's index in `points`).
+std::optional<NodeInZone> find_point_inside_zones(const Mesh& mesh, const std::vector<Vec2>& points, Index zone_begin,
+                                                  Index zone_end, double depth_fraction = 1e-3);
+// The same for the centres (corner means) of the active zones of [centre_begin, centre_end)
+// (NodeInZone::node is then the zone): bodies whose nodes coincide, e.g. two identical bodies, or a
+// body moved whole zones into another along its zone lines, have no node strictly inside the other's
+// zones, but their zone centres are.
+std::optional<NodeInZone> find_zone_centre_inside_zones(const Mesh& mesh, Index centre_begin, Index centre_end,
+                                                        Index zone_begin, Index zone_end, double depth_fraction = 1e-3);
 
 }  // namespace krug
