@@ -1,4 +1,4 @@
-// E10 of verification.md: the Johnson-Cook damage law (krug/fracture/johnson_cook.hpp) in a run. A bar
+// E9 of verification.md: the Johnson-Cook damage law (krug/fracture/johnson_cook.hpp) in a run. A bar
 // pulled at constant speed by a velocity condition on one end, its other end on a symmetry plane, with
 // the initial velocity already the homogeneous stretching field (u = v x / L) so that no start-up wave
 // crosses it; the bar stays homogeneous (a hardening modulus well above the flow stress keeps it short
