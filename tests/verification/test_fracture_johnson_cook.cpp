@@ -2,19 +2,21 @@
 // pulled at constant speed by a velocity condition on one end, its other end on a symmetry plane, with
 // the initial velocity already the homogeneous stretching field (u = v x / L) so that no start-up wave
 // crosses it; the bar stays homogeneous (a hardening modulus well above the flow stress keeps it short
-// of necking: Considere, d sigma / d eps = H = 2 GPa > sigma < 0.8 GPa at these strains).
+// of necking: Considere, d sigma / d eps = H = 2 GPa stays above sigma = 0.3 + 2 eps_p <= 0.75 GPa up to
+// eps_p = 0.225).
 //
-//   (b) uniaxial tension: an axisymmetric rod with a free lateral surface, triaxiality 1/3;
-//   (c) plane-strain tension: a planar strip (no out-of-plane strain) with a free side, whose
+//   - uniaxial tension: an axisymmetric rod with a free lateral surface, triaxiality 1/3;
+//   - plane-strain tension: a planar strip (no out-of-plane strain) with a free side, whose
 //       triaxiality tends to 1/sqrt(3) = 0.577 once it flows (sigma_zz = sigma_xx / 2).
 //
 // The failing zone (the first damaged) is followed step by step: its plastic strain increment and
 // strain rate, its triaxiality -p / sigma_vm as the run reaches it. The prediction integrates
 // D_ref = sum d eps_p / eps_f with eps_f written here from Johnson & Cook (1985) eq. (4) and Table 1
-// (2024-T351: D1 0.13, D2 0.13, D3 -1.5, D4 0.011, D5 0), at eta = 1/3 for (b) and at the measured
-// triaxiality for (c); the zone must fail within one step's plastic strain increment of the strain at
+// (2024-T351: D1 0.13, D2 0.13, D3 -1.5, D4 0.011, D5 0), at eta = 1/3 for the rod and at the measured
+// triaxiality for the strip; the zone must fail within one step's plastic strain increment of the strain at
 // which D_ref reaches 1. The ledgers (mass, total energy with the boundary work) close to round-off
-// through the damage and the conversion of the fractured zones that follows.
+// through the damage. The bars' damaged zones never loosen (they keep stretching at constant volume), so
+// a third case, a brittle expanding block, takes damaged zones through conversion to free elements.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -148,7 +150,7 @@ struct Prediction {
   double mean_rate = 0.0;   // plastic-strain-weighted mean plastic strain rate
 };
 
-// D_ref = sum d eps_p / eps_f(eta, rate), eta fixed (b) or the measured one (c, fixed_eta NaN).
+// D_ref = sum d eps_p / eps_f(eta, rate), eta fixed (the rod) or the measured one (the strip: fixed_eta NaN).
 Prediction predict(const std::vector<StepRecord>& history, double fixed_eta) {
   Prediction p;
   double d = 0.0, strain = 0.0, weighted_eta = 0.0, weighted_rate = 0.0, last_strain_limit = 0.0;
