@@ -19,6 +19,7 @@
 #include "scenario_bodies.hpp"
 #include "scenario_run.hpp"
 #include "krug/core/error.hpp"
+#include "krug/fracture/failure_law.hpp"
 #include "krug/material/library.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
@@ -37,22 +38,50 @@ using detail::read_output;
 using detail::read_penetration;
 using detail::read_stop_rule;
 
-// One model of a variant (Eos, Strength) from its block: "model" names it (the alternatives' `name`s, in
-// the variant's order; `fallback`: the model when the key is absent), and its parameters are read as its
-// header describes them (krug/material/parameters.hpp). A model's `reference_density` is the material's.
+// The constant of key `key` of a strength model (its parameter list), if the model has one.
+std::optional<double> strength_constant(const Strength& strength, std::string_view key) {
+  return std::visit(
+      [&](const auto& model) -> std::optional<double> {
+        for (const auto& p : parameters(std::type_identity<std::decay_t<decltype(model)>>{})) {
+          if (p.key == key) return model.*(p.member);
+        }
+        return std::nullopt;
+      },
+      strength);
+}
+
+// One model of a variant (Eos, Strength, fracture::FailureLaw) from its block: "model" names it (the
+// alternatives' `name`s, in the variant's order; `fallback`: the model when the key is absent), and its
+// parameters are read as its header describes them (krug/core/parameters.hpp). A model's
+// `reference_density` is the material's. An optional parameter that stands for a strength constant
+// (`strength_key`) takes the material's `strength` value when it is not given; an optional parameter
+// whose value when absent is infinite (a limit that is off) is not written into the resolved scenario
+// (JSON has no infinity).
 template <class Model>
-Model read_model_parameters(JsonObject& spec, double reference_density) {
+Model read_model_parameters(JsonObject& spec, double reference_density, const Strength* strength = nullptr) {
   Model model{};
   for (const ModelParameter<Model>& p : parameters(std::type_identity<Model>{})) {
     const Range range{p.minimum, p.maximum, p.minimum_exclusive};
-    model.*(p.member) = p.required ? spec.number(p.key, range) : spec.number(p.key, p.fallback, range);
+    double fallback = p.fallback;
+    if (!p.strength_key.empty() && strength != nullptr) {
+      if (const auto value = strength_constant(*strength, p.strength_key)) fallback = *value;
+    }
+    if (p.required) {
+      model.*(p.member) = spec.number(p.key, range);
+    } else if (!std::isfinite(fallback) && !spec.has(p.key)) {
+      spec.optional_raw(p.key);  // named among the valid keys
+      model.*(p.member) = fallback;
+    } else {
+      model.*(p.member) = spec.number(p.key, fallback, range);
+    }
   }
   if constexpr (requires { model.reference_density; }) model.reference_density = reference_density;
   return model;
 }
 
 template <class Variant>
-Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, double reference_density) {
+Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, double reference_density,
+                   const Strength* strength = nullptr, bool echo_fallback = true) {
   constexpr std::size_t count = std::variant_size_v<Variant>;
   const std::vector<std::string> names = [] {
     std::vector<std::string> list;
@@ -61,11 +90,19 @@ Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, d
     }(std::make_index_sequence<count>{});
     return list;
   }();
-  const std::string chosen = fallback ? spec.choice("model", names, *fallback) : spec.choice("model", names);
+  std::string chosen;
+  if (fallback && !echo_fallback && !spec.has("model")) {
+    spec.optional_raw("model");  // named among the valid keys; the default is not written out
+    chosen = std::string(*fallback);
+  } else {
+    chosen = fallback ? spec.choice("model", names, *fallback) : spec.choice("model", names);
+  }
   Variant result;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (void)((chosen == std::variant_alternative_t<I, Variant>::name
-                ? (result = read_model_parameters<std::variant_alternative_t<I, Variant>>(spec, reference_density), true)
+                ? (result = read_model_parameters<std::variant_alternative_t<I, Variant>>(spec, reference_density,
+                                                                                          strength),
+                   true)
                 : false) ||
            ...);
   }(std::make_index_sequence<count>{});
@@ -133,7 +170,8 @@ std::string library_names() {
 }
 
 // A library set as the material block the reader reads: density, eos, strength and, where the set has
-// them, fracture criteria. The damage constants are carried by the library only (library.hpp).
+// them, fracture criteria. The damage constants (block "damage") enter only a fracture block that asks
+// for the Johnson-Cook law (expand_material).
 Json library_material(const library::MaterialSet& set) {
   Json m = Json::object();
   m["eos"] = Json{{"model", std::string(set.eos_model)}};
@@ -198,11 +236,20 @@ Json expand_material(const Json& given, const std::string& path) {
       }
     }
   }
+  // "fracture": {"model": "johnson_cook"} takes the set's published D1..D5 for the constants it does
+  // not give itself; a set without them leaves the reader to ask for them.
+  const auto fracture = expanded.find("fracture");
+  if (fracture != expanded.end() && fracture->is_object() && fracture->contains("model") &&
+      (*fracture)["model"] == std::string(fracture::JohnsonCookDamage::name)) {
+    for (const library::Constant& c : set->constants) {
+      if (c.block == "damage" && !fracture->contains(std::string(c.key))) (*fracture)[std::string(c.key)] = c.value;
+    }
+  }
   expanded["base"] = name;
   return expanded;
 }
 
-Material read_material(const std::string& name, JsonObject spec, fracture::FractureLimits& limits,
+Material read_material(const std::string& name, JsonObject spec, fracture::FailureLaw& failure,
                        fracture::ErosionLimits& erosion, const Allowances& allow) {
   Material m;
   m.name = name;
@@ -264,28 +311,27 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Fract
   }
   strength.finish();
   if (auto f = spec.optional_object("fracture")) {
-    // Criteria (1) of the paper: each enabled only when its limit is given.
-    auto limit = [&](std::string_view key) {
-      return f->has(key) ? f->number(key, Range::positive()) : (f->optional_raw(key), fracture::disabled);
-    };
-    limits.elongation = limit("elongation");
-    limits.tensile_stress = limit("tensile_stress");
-    limits.compressive_stress = limit("compressive_stress");
-    limits.shear_strain = limit("shear_strain");
-    limits.internal_energy = limit("internal_energy");
-    limits.loosening = f->number("loosening", limits.loosening, Range{0.0, 1.0, true});
-    if (!allow.allows("fracture_strain")) {
-      for (const auto& [key, value] : {std::pair{"elongation", limits.elongation}, std::pair{"shear_strain", limits.shear_strain}}) {
-        if (value != fracture::disabled && value > 10.0) {
-          throw InputError(fmt::format("{}: a strain of {:g} is more than 10 (1000 %); strains are fractions, not "
-                                       "percent{}",
-                                       f->path_of(key), value, allow_hint("fracture_strain")));
+    // A failure law (krug/fracture/failure_law.hpp): criteria (1) of the paper unless "model" names another.
+    failure = read_model<fracture::FailureLaw>(*f, std::variant_alternative_t<0, fracture::FailureLaw>::name,
+                                               m.reference_density, &m.strength, false);
+    if (const auto* limits = std::get_if<fracture::FractureLimits>(&failure)) {
+      // Criteria (1): each enabled only when its limit is given.
+      if (!allow.allows("fracture_strain")) {
+        for (const auto& [key, value] :
+             {std::pair{"elongation", limits->elongation}, std::pair{"shear_strain", limits->shear_strain}}) {
+          if (value != fracture::disabled && value > 10.0) {
+            throw InputError(fmt::format("{}: a strain of {:g} is more than 10 (1000 %); strains are fractions, not "
+                                         "percent{}",
+                                         f->path_of(key), value, allow_hint("fracture_strain")));
+          }
         }
       }
-    }
-    f->finish();
-    if (!limits.any()) {
-      f->fail_here("expected at least one limit: elongation, tensile_stress, compressive_stress, shear_strain or internal_energy");
+      f->finish();
+      if (!limits->any()) {
+        f->fail_here("expected at least one limit: elongation, tensile_stress, compressive_stress, shear_strain or internal_energy");
+      }
+    } else {
+      f->finish();
     }
   }
   if (auto e = spec.optional_object("erosion")) erosion = read_erosion(std::move(*e), erosion);
@@ -467,7 +513,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
     expanded_materials.reserve(materials.keys().size());
     for (const std::string& name : materials.keys()) {
       material_index[name] = static_cast<Index>(scene.materials.size());
-      fracture::FractureLimits limits;
+      fracture::FailureLaw limits;
       fracture::ErosionLimits erosion;
       expanded_materials.push_back(expand_material(materials.raw(name), materials.path_of(name)));
       scene.materials.push_back(
@@ -523,7 +569,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
   }
   top.resolve("bodies", resolved_bodies);
   std::vector<bool> fracturing;
-  for (const Body& body : named_bodies) fracturing.push_back(scene.fracture[static_cast<std::size_t>(body.material)].any());
+  for (const Body& body : named_bodies) fracturing.push_back(fracture::enabled(scene.fracture[static_cast<std::size_t>(body.material)]));
   scene.contact = read_contact(top.object_or_empty("contact"), named_bodies, geometry, fracturing);
 
   scene.controls = read_controls(top.object_or_empty("controls"), end_time, scene.max_zones);

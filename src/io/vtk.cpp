@@ -161,7 +161,7 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
   }
   std::vector<std::int32_t> connectivity, offsets, body;
   std::vector<std::uint8_t> types, damaged, criterion;
-  std::vector<double> density, pressure, energy, sound_speed, von_mises, plastic_strain, damage_time, time_step;
+  std::vector<double> density, pressure, energy, sound_speed, von_mises, plastic_strain, damage_time, damage, time_step;
   std::array<std::vector<double>, 4> deviator;
   for (Index z : zones) {
     for (Index n : mesh.zones.corners[z]) connectivity.push_back(n);
@@ -184,6 +184,7 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
     damaged.push_back(mesh.zones.damaged[z]);
     damage_time.push_back(mesh.zones.damage_time[z]);
     criterion.push_back(mesh.zones.damage_criterion[z]);
+    damage.push_back(mesh.zones.damage[z]);
     time_step.push_back(mesh.zones.stable_time_step[z]);
   }
   VtkDocument vtk(encoding, "UnstructuredGrid");
@@ -212,6 +213,7 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
   vtk.array("damaged", 1, damaged);
   vtk.array("damage_onset_time", 1, damage_time);
   vtk.array("damage_criterion", 1, criterion);
+  vtk.array("damage", 1, damage);
   vtk.array("stable_time_step", 1, time_step);
   write_text_atomically(file, vtk.finish("      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n"));
 }

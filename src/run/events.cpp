@@ -1,9 +1,12 @@
 #include "krug/run/events.hpp"
 
 #include <algorithm>
+#include <string>
 #include <variant>
 
 #include <fmt/format.h>
+
+#include "krug/fracture/failure_law.hpp"
 
 namespace krug::run {
 
@@ -52,10 +55,18 @@ std::vector<std::string> start_up_lines(const io::Scenario& scenario, const Simu
   lines.push_back(fmt::format("{} geometry ({}, {}), end time {:.4g} s{}",
                               g == GeometryKind::planar ? "planar" : "axisymmetric", axis_name(g, 0), axis_name(g, 1),
                               simulation.controls().end_time, scenario.stop ? ", or earlier by the stop rule" : ""));
-  for (const Material& m : simulation.materials()) {
+  for (std::size_t i = 0; i < simulation.materials().size(); ++i) {
+    const Material& m = simulation.materials()[i];
     const auto eos = std::visit([](const auto& model) { return model.name; }, m.eos);
     const auto strength = std::visit([](const auto& model) { return model.name; }, m.strength);
-    lines.push_back(fmt::format("material {}: {} kg/m^3, eos {}, strength {}", m.name, m.reference_density, eos, strength));
+    // The failure law, when the material fractures (fracture/failure_law.hpp).
+    std::string failure;
+    if (i < scenario.scene.fracture.size() && fracture::enabled(scenario.scene.fracture[i])) {
+      failure = fmt::format(", fracture {}",
+                            std::visit([](const auto& law) { return law.name; }, scenario.scene.fracture[i]));
+    }
+    lines.push_back(fmt::format("material {}: {} kg/m^3, eos {}, strength {}{}", m.name, m.reference_density, eos,
+                                strength, failure));
   }
   for (const Body& body : simulation.bodies()) {
     const BodySummary s = simulation.summarise(body);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
+#include <variant>
 
 #include "krug/fracture/damage.hpp"
 #include "krug/particles/conversion.hpp"
@@ -26,10 +28,24 @@ bool has_inverted_corner(const quad::Corners& x, const ZoneCorners& n) {
 
 void Simulation::evaluate_fracture() {
   const double now = state_.time + state_.time_step_next;  // the state just computed is at t^{n+1}
+  const double dt = state_.time_step_next;                  // the step over which the plastic strain grew
+  const std::vector<double>& energy = state_.mesh.zones.specific_energy;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    if (!fracture_limits_[b].any()) continue;
-    state_.fracture_counts[b].damaged +=
-        fracture::damage_zones(state_.mesh, bodies_[b].zone_begin, bodies_[b].zone_end, fracture_limits_[b], geometry_, now);
+    if (!fracture::enabled(failure_laws_[b])) continue;
+    const Body& body = bodies_[b];
+    const Material& material = materials_[static_cast<std::size_t>(body.material)];
+    // One dispatch per body on the law and the strength model (which alone knows a temperature).
+    state_.fracture_counts[b].damaged += std::visit(
+        [&](const auto& law, const auto& strength) {
+          using S = std::decay_t<decltype(strength)>;
+          if constexpr (std::is_same_v<S, JohnsonCook>) {
+            return fracture::damage_zones(state_.mesh, body.zone_begin, body.zone_end, law, geometry_, now, dt,
+                                          [&](Index z) { return strength.temperature_from_energy(energy[z]); });
+          } else {
+            return fracture::damage_zones(state_.mesh, body.zone_begin, body.zone_end, law, geometry_, now, dt);
+          }
+        },
+        failure_laws_[b], material.strength);
   }
 }
 
@@ -77,15 +93,16 @@ void Simulation::convert_fractured_zones() {
 
   // Choose the whole layer first, then convert: one boundary layer per step.
   for (std::size_t b = 0; b < bodies_.size() && any_damaged; ++b) {
-    if (!fracture_limits_[b].any()) continue;
+    if (!fracture::enabled(failure_laws_[b])) continue;
     const Body& body = bodies_[b];
     const double reference_density = materials_[static_cast<std::size_t>(body.material)].reference_density;
+    const double loosening_limit = fracture::loosening_limit(failure_laws_[b]);
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
       if (!zones.active[z] || !zones.damaged[z]) continue;
       const quad::Corners x = state_.mesh.corner_positions(z);
       const double altitude = quad::smallest_altitude(x, zones.area[z]);
       const double chi = fracture::loosening(zones.density[z], reference_density);
-      const bool fully = fracture::fully_fractured(chi, fracture_limits_[b].loosening, altitude,
+      const bool fully = fracture::fully_fractured(chi, loosening_limit, altitude,
                                                    zones.initial_altitude[z], fc.altitude_ratio);
       bool on_surface = false;
       for (int k = 0; k < 4 && !on_surface; ++k) on_surface = face_is_free(z, k);

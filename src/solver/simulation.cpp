@@ -73,8 +73,8 @@ Simulation::Simulation(SimulationSetup setup)
   state_.body_converted_energy.assign(bodies_.size(), 0.0);
   for (const Body& body : bodies_) {
     const auto m = static_cast<std::size_t>(body.material);
-    fracture_limits_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FractureLimits{});
-    fracture_enabled_ = fracture_enabled_ || fracture_limits_.back().any() || body.erosion().any();
+    failure_laws_.push_back(m < setup.fracture.size() ? setup.fracture[m] : fracture::FailureLaw{});
+    fracture_enabled_ = fracture_enabled_ || fracture::enabled(failure_laws_.back()) || body.erosion().any();
   }
   initialise();
   if (fracture_enabled_) {

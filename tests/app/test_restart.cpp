@@ -7,6 +7,7 @@
 // checkpoint too.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 
 #include "krug/core/error.hpp"
@@ -125,6 +126,31 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
   };
   REQUIRE(krug::run::run_scenario(scenario, options).message == "interrupted");
   REQUIRE(krug::io::read_checkpoint(stopped / "checkpoint.bin").state.particles.size() > 0);
+  CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  check_same_run(reference, stopped);
+}
+
+TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates", "[app][restart]") {
+  // tests/app/data/johnson_cook_plate.json: the plate's zones carry D (zone field `damage`) and the
+  // plastic strain already counted in it; a restart from a checkpoint taken when some zone has
+  // 0 < D < 1 must end with the same bits (final.vtu includes the field `damage`).
+  const fs::path file = fs::path(KRUG_APP_TEST_DATA_DIR) / "johnson_cook_plate.json";
+  const auto scenario = krug::io::load_scenario(file);
+  const fs::path reference = krug::test::scratch("johnson_cook_reference");
+  const fs::path stopped = krug::test::scratch("johnson_cook_interrupted");
+  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  std::atomic<bool> interrupt{false};
+  RunOptions options = to(stopped);
+  options.interrupt = &interrupt;
+  options.on_cycle = [&](const krug::Simulation& s, double) {
+    const auto& damage = s.mesh().zones.damage;
+    if (std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; })) interrupt = true;
+    return true;
+  };
+  REQUIRE(krug::run::run_scenario(scenario, options).message == "interrupted");
+  const auto checkpoint = krug::io::read_checkpoint(stopped / "checkpoint.bin");
+  const auto& damage = checkpoint.state.mesh.zones.damage;
+  CHECK(std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; }));
   CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   check_same_run(reference, stopped);
 }

@@ -24,12 +24,23 @@
 #include <limits>
 #include <string_view>
 
+#include "krug/core/parameters.hpp"
 #include "krug/core/vec2.hpp"
+#include "krug/fracture/point_state.hpp"
 #include "krug/mesh/quad.hpp"
 
 namespace krug::fracture {
 
-enum class Criterion : std::uint8_t { none = 0, elongation, tensile_stress, compressive_stress, shear_strain, energy };
+// What made a zone damaged (ZoneFields::damage_criterion): one of criteria (1), or a damage law's D >= 1.
+enum class Criterion : std::uint8_t {
+  none = 0,
+  elongation,
+  tensile_stress,
+  compressive_stress,
+  shear_strain,
+  energy,
+  johnson_cook  // Johnson-Cook damage D >= 1 (johnson_cook.hpp)
+};
 
 constexpr std::string_view criterion_name(Criterion c) {
   switch (c) {
@@ -38,6 +49,7 @@ constexpr std::string_view criterion_name(Criterion c) {
     case Criterion::compressive_stress: return "compressive_stress";
     case Criterion::shear_strain: return "shear_strain";
     case Criterion::energy: return "internal_energy";
+    case Criterion::johnson_cook: return "johnson_cook";
     case Criterion::none: break;
   }
   return "none";
@@ -45,8 +57,13 @@ constexpr std::string_view criterion_name(Criterion c) {
 
 constexpr double disabled = std::numeric_limits<double>::infinity();
 
-// Limits of one material; infinity = criterion off.
+// Criteria (1), the first failure law (failure_law.hpp): the limits of one material; infinity =
+// criterion off. Its scenario model name is "criteria", the default of a `fracture` block.
 struct FractureLimits {
+  static constexpr std::string_view name = "criteria";
+  // The zone state it reads (point_state.hpp): the principal stretches and stresses and the energy.
+  static constexpr unsigned inputs = input::stretches | input::principal_stress | input::specific_energy;
+
   double elongation = disabled;          // eps_* (-)
   double tensile_stress = disabled;      // sigma_* (Pa), on the largest principal stress
   double compressive_stress = disabled;  // (Pa), on minus the smallest principal stress
@@ -74,14 +91,7 @@ struct ErosionLimits {
   bool strained(double equivalent_plastic_strain) const { return equivalent_plastic_strain > plastic_strain; }
 };
 
-// Principal stretches (in-plane pair and the out-of-plane/hoop one).
-struct Stretches {
-  double in_plane_max = 1.0;
-  double in_plane_min = 1.0;
-  double out_of_plane = 1.0;
-  double largest() const { return std::max(in_plane_max, out_of_plane); }
-  double smallest() const { return std::min(in_plane_min, out_of_plane); }
-};
+
 
 // In-plane principal stretches of the 2x2 deformation gradient F: the square roots of the
 // eigenvalues of C = F^T F.
@@ -110,11 +120,7 @@ inline void deformation_gradient(const std::array<Vec2, 4>& current, const std::
   f22 = f.yy * inv;
 }
 
-// Principal values of the Cauchy stress s - p I (in-plane pair from the 2x2 block, plus the zz one).
-struct PrincipalStress {
-  double largest = 0.0;
-  double smallest = 0.0;
-};
+
 
 inline PrincipalStress principal_stress(double sxx, double syy, double sxy, double szz, double pressure) {
   const double mean = 0.5 * (sxx + syy) - pressure;
@@ -132,6 +138,24 @@ inline Criterion exceeded(const FractureLimits& limits, const Stretches& stretch
   if (stretch.largest() - stretch.smallest() > limits.shear_strain) return Criterion::shear_strain;
   if (specific_energy > limits.internal_energy) return Criterion::energy;
   return Criterion::none;
+}
+
+// Scenario parameters (krug/core/parameters.hpp), in the order they are read: each limit is optional
+// and off (infinite) when absent; chi_* defaults to 0.03.
+constexpr auto parameters(std::type_identity<FractureLimits>) {
+  using parameter::optional;
+  using parameter::positive;
+  return std::array{optional(positive("elongation", &FractureLimits::elongation), disabled),
+                    optional(positive("tensile_stress", &FractureLimits::tensile_stress), disabled),
+                    optional(positive("compressive_stress", &FractureLimits::compressive_stress), disabled),
+                    optional(positive("shear_strain", &FractureLimits::shear_strain), disabled),
+                    optional(positive("internal_energy", &FractureLimits::internal_energy), disabled),
+                    optional(parameter::between("loosening", &FractureLimits::loosening, 0.0, 1.0, true), 0.03)};
+}
+
+// The law's test of one zone (failure_law.hpp): criteria (1) keep no damage variable.
+inline Criterion test(const FractureLimits& limits, const PointState& point, double& /*damage*/) {
+  return exceeded(limits, point.stretch, point.stress, point.specific_energy);
 }
 
 // Loosening chi = 1 - rho/rho0 where the material has expanded below its reference density, else 0.

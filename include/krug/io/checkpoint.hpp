@@ -25,7 +25,7 @@
 
 namespace krug::io {
 
-inline constexpr std::uint32_t checkpoint_version = 3;
+inline constexpr std::uint32_t checkpoint_version = 4;
 
 // The stop rule's window as it stands (krug/run/stop_rule.hpp, StopMonitor): what a checkpoint keeps
 // of it. Each component's window extremes are kept as (time, value) samples in monotonic queues.

@@ -10,8 +10,10 @@
 //
 // The Johnson–Cook damage constants D1..D5 (Johnson & Cook 1985, fracture strain
 // eps_f = [D1 + D2 exp(D3 sigma*)] [1 + D4 ln(rate*)] [1 + D5 T*], sigma* = mean stress / von Mises
-// stress) are carried in the block "damage" for the sets where they are published. No failure law
-// reads them yet: they are not expanded into a scenario, only listed (`krug materials NAME`).
+// stress) are carried in the block "damage" for the sets where they are published. They enter a
+// scenario only through a fracture block that asks for the Johnson-Cook failure law (the reader fills
+// the block's missing d1..d5 from the set: src/io/scenario.cpp, expand_material), and are listed by
+// `krug materials NAME`.
 //
 // Sources, abbreviated in the strings below (full references in docs/materials.md):
 //   JC83   Johnson & Cook (1983), 7th Int. Symp. Ballistics, The Hague, 541-547, Table 1 (strength)
@@ -33,7 +35,8 @@
 namespace krug::library {
 
 // One constant of a set: its block in a scenario's material ("" for the material's own keys, "eos",
-// "strength", "fracture"; "damage" for the Johnson–Cook damage constants, carried only), its key there,
+// "strength", "fracture"; "damage" for the Johnson–Cook damage constants, read by the Johnson-Cook
+// failure law when a scenario asks for it), its key there,
 // its value in SI, its unit (for listings) and its source.
 struct Constant {
   std::string_view block;

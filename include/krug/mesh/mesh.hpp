@@ -63,6 +63,8 @@ struct ZoneFields {
   std::vector<std::uint8_t> damaged;             // 0 intact, 1 damaged
   std::vector<double> damage_time;               // s; -1 while intact
   std::vector<std::uint8_t> damage_criterion;    // fracture::Criterion that fired
+  std::vector<double> damage;                    // a damage law's D (Johnson-Cook: sum d eps_p / eps_f); 0 otherwise
+  std::vector<double> damage_plastic_strain;     // the plastic strain already counted in `damage`
   std::vector<double> initial_altitude;          // smallest altitude of the initial shape (m)
   std::vector<double> stable_time_step;          // the zone's own stable step from the last update (s)
 
@@ -122,6 +124,8 @@ void for_each_zone_field(Zones& z, F&& f) {
   f("damaged", z.damaged, 1, std::uint8_t{0});
   f("damage_time", z.damage_time, 1, -1.0);
   f("damage_criterion", z.damage_criterion, 1, std::uint8_t{0});
+  f("damage", z.damage, 1, 0.0);
+  f("damage_plastic_strain", z.damage_plastic_strain, 1, 0.0);
   f("initial_altitude", z.initial_altitude, 1, 0.0);
   f("stable_time_step", z.stable_time_step, 1, 0.0);
 }
@@ -130,7 +134,7 @@ void for_each_zone_field(Zones& z, F&& f) {
 // stops here (every member is a std::vector of 24 bytes, plus ZoneFields' neighbours_built flag).
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(NodeFields) == 14 * 24,
               "NodeFields changed: add the field to for_each_node_field");
-static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 30 * 24 + 8,
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 32 * 24 + 8,
               "ZoneFields changed: add the field to for_each_zone_field");
 
 struct Mesh {

@@ -99,7 +99,7 @@ struct BodyDescription {
 struct SceneDescription {
   GeometryKind geometry = GeometryKind::planar;
   std::vector<Material> materials;
-  std::vector<fracture::FractureLimits> fracture;  // per material; empty: no fracture
+  std::vector<fracture::FailureLaw> fracture;  // per material; empty: no fracture
   std::vector<BodyDescription> bodies;
   contact::ContactSetup contact;
   Controls controls;

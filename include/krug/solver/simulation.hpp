@@ -6,7 +6,7 @@
 
 #include "krug/contact/contact.hpp"
 #include "krug/core/geometry_kind.hpp"
-#include "krug/fracture/criteria.hpp"
+#include "krug/fracture/failure_law.hpp"
 #include "krug/particles/particles.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
@@ -50,7 +50,7 @@ struct SimulationSetup {
   std::vector<Body> bodies;
   std::vector<NodeConstraint> constraints;
   contact::ContactSetup contact;
-  std::vector<fracture::FractureLimits> fracture;  // per material; empty or limits.any() == false: no fracture
+  std::vector<fracture::FailureLaw> fracture;  // per material; empty or not enabled (fracture::enabled): no fracture
   Controls controls;
 };
 
@@ -174,7 +174,7 @@ class Simulation {
   void correct_and_move();        // 4. the contact and boundary work of R; x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
   void conduct_heat();            // 5b. artificial heat conduction between zones (if on)
-  void evaluate_fracture();       // 6. criteria (1) on intact zones; damage is permanent
+  void evaluate_fracture();       // 6. failure laws on intact zones; damage is permanent
   void convert_fractured_zones(); // 7. fully fractured surface zones -> particles (one layer per step)
   void choose_time_step();        // 8. dt^{n+3/2}
 
@@ -196,7 +196,7 @@ class Simulation {
   std::vector<NodeConstraint> constraints_;
   std::vector<std::uint8_t> held_x_, held_y_;  // per node: DOF held by a condition
   contact::ContactSolver contact_;
-  std::vector<fracture::FractureLimits> fracture_limits_;  // per body
+  std::vector<fracture::FailureLaw> failure_laws_;  // per body
   bool fracture_enabled_ = false;
   bool topology_changed_ = false;
   contact::ContactStatistics last_contact_;
