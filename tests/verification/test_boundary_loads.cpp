@@ -7,6 +7,7 @@
 //   pressure_step.json               planar strip, slip walls, 10 MPa on x_min
 //   pressure_step_axisymmetric.json  RZ cylinder, slip on r_max (still uniaxial strain), 10 MPa on z_min
 //   ramp_piston.json                 planar strip, x_min driven at 1 m/s min(t / 2 us, 1)
+//   (inline)                         B4 a spherical cavity under a pressure step, B5 a traction step in plane shear
 //
 // The solid is linear only to first order (p = K (rho/rho0 - 1), a hypoelastic deviator): at the
 // strains here (u / c_L < 1e-4) its departure from the linear answer is of that relative order.
@@ -246,4 +247,89 @@ TEST_CASE("B4 spherical cavity under a pressure step: the radial velocity agains
   report("B4 spherical cavity", "largest error of u_R behind the front (m/s)", "0", largest,
          format_number("%.1e of the peak", largest / peak), sim.mesh().zones.size(), run.seconds);
   check_ledgers(sim);
+}
+
+// B5: a traction step on the face of a half-space in plane shear: the strip of B1 with its long sides
+// holding u_x = 0 (they supply the sigma_xy of a plane shear wave there; sigma_yy = 0 in it) and a
+// traction tau on x_min. Exact (Achenbach 1973, ch. 2, the transverse wave): v_y = f(t - x / c_S),
+// sigma_xy = -rho c_S v_y; the face's traction gives sigma_xy = tau behind the front at c_S t. The
+// traction points along the side traversed counter-clockwise about the body: -y on x_min, so tau =
+// -10 MPa pulls the face towards +y and v_y = -tau / (rho c_S) = 1.1935 m/s.
+TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau and front", "[B5][boundary]") {
+  const std::string text = R"({
+    "title": "B5: traction step, plane shear", "geometry": "planar", "end_time": 1.0e-5,
+    "materials": { "elastic": { "density": 2700.0, "eos": { "model": "linear", "bulk_modulus": 7.0e10 },
+                                "strength": { "model": "elastic", "shear_modulus": 2.6e10 } } },
+    "bodies": [ { "name": "strip", "material": "elastic",
+                  "mesh": { "type": "rectangle", "x": { "from": 0.0, "to": 0.1, "zones": 500 },
+                            "y": { "from": 0.0, "to": 0.0002, "zones": 1 } },
+                  "boundary": { "x_min": { "type": "traction", "traction": -1.0e7 },
+                                "y_min": { "type": "velocity", "velocity": [0.0, null] },
+                                "y_max": { "type": "velocity", "velocity": [0.0, null] } } } ]
+  })";
+  const io::Scenario scenario = io::parse_scenario(text, "b5.json");
+  Run run(scenario.setup);
+  advance(run);
+  INFO(run.failure);
+  REQUIRE(run.completed());
+  const Simulation& sim = run.simulation;
+  const double traction = -1.0e7;
+  const double shear_speed = std::sqrt(shear_modulus / density);
+  const double velocity = -traction / (density * shear_speed);
+  const double t_velocity = sim.time() - 0.5 * sim.last_time_step();
+  // Per zone: centre x, mean v_y of its corners, sigma_xy.
+  struct Sample {
+    double x, v, shear;
+  };
+  std::vector<Sample> strip;
+  const Mesh& mesh = sim.mesh();
+  for (Index z = 0; z < mesh.zones.size(); ++z) {
+    const ZoneCorners& c = mesh.zones.corners[z];
+    double x = 0.0, v = 0.0;
+    for (const Index n : c) {
+      x += 0.25 * mesh.nodes.x[n];
+      v += 0.25 * mesh.nodes.v[n];
+    }
+    strip.push_back({x, v, mesh.zones.deviator_xy[z]});
+  }
+  std::sort(strip.begin(), strip.end(), [](const Sample& a, const Sample& b) { return a.x < b.x; });
+  double front = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = strip.size() - 1; k > 0; --k) {
+    const double a = strip[k - 1].v - 0.5 * velocity, b = strip[k].v - 0.5 * velocity;
+    if ((a >= 0.0) != (b >= 0.0)) {
+      front = strip[k - 1].x + a / (a - b) * (strip[k].x - strip[k - 1].x);
+      break;
+    }
+  }
+  INFO("shear front " << front << " m, exact " << shear_speed * t_velocity << " m");
+  // Within 2 zones (measured -1.04: the shear front is captured without viscosity, which acts on
+  // compression only, and its ringing leads the mid-level crossing back).
+  CHECK(std::abs(front - shear_speed * t_velocity) < 2.0 * dx);
+  double mean_v = 0.0, mean_shear = 0.0;
+  int count = 0;
+  for (const Sample& s : strip) {
+    if (s.x < 10 * dx || s.x > front - 20 * dx) continue;
+    mean_v += s.v;
+    mean_shear += s.shear;
+    ++count;
+  }
+  REQUIRE(count > 100);
+  mean_v /= count;
+  mean_shear /= count;
+  INFO("plateau (" << count << " zones): v_y " << mean_v << " m/s (exact " << velocity << "), sigma_xy " << mean_shear
+                   << " Pa (exact " << traction << ")");
+  // Within 1e-3, as B1 (measured -1.4e-4 in v_y, -3.8e-4 in sigma_xy).
+  CHECK(mean_v == Approx(velocity).epsilon(1e-3));
+  CHECK(mean_shear == Approx(traction).epsilon(1e-3));
+  report("B5 traction step", "plateau sigma_xy (Pa)", "-1e7", mean_shear, format_number("%+.1e", mean_shear / traction - 1.0),
+         sim.mesh().zones.size(), run.seconds);
+  report("B5 traction step", "plateau v_y (m/s)", format_number("%.5f", velocity), mean_v,
+         format_number("%+.1e", mean_v / velocity - 1.0), sim.mesh().zones.size(), run.seconds);
+  report("B5 traction step", "front at 10 us (m)", format_number("%.5f", shear_speed * t_velocity), front,
+         format_number("%+.2f zones", (front - shear_speed * t_velocity) / dx), sim.mesh().zones.size(), run.seconds);
+  // The ledgers: the traction's work, and the held sides' (which do none: u_x = 0 there).
+  const Ledger& ledger = sim.ledger();
+  INFO("energy drift " << ledger.relative_energy_drift() << ", W_boundary " << ledger.energy.boundary);
+  CHECK(ledger.energy.boundary > 0.0);
+  CHECK(ledger.relative_energy_drift() < 1e-12);
 }
