@@ -333,3 +333,23 @@ TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau an
   CHECK(ledger.energy.boundary > 0.0);
   CHECK(ledger.relative_energy_drift() < 1e-12);
 }
+
+// The boundary package keeps no state over a run: a run with a load and one with a velocity in time
+// restart from Simulation::state() exactly (the same bits as the run that did not stop).
+TEST_CASE("runs with a pressure load or a velocity in time restart exactly", "[boundary]") {
+  for (const char* file : {"pressure_step.json", "ramp_piston.json"}) {
+    INFO(file);
+    const io::Scenario scenario = load_example(file);
+    Simulation straight(scenario.setup);
+    for (int k = 0; k < 150; ++k) straight.step();
+    const SimulationState halfway = straight.state();
+    for (int k = 0; k < 150; ++k) straight.step();
+    Simulation restarted(scenario.setup);
+    restarted.restore(halfway);
+    for (int k = 0; k < 150; ++k) restarted.step();
+    CHECK(restarted.mesh().nodes.u == straight.mesh().nodes.u);
+    CHECK(restarted.mesh().nodes.x == straight.mesh().nodes.x);
+    CHECK(restarted.ledger().energy.boundary == straight.ledger().energy.boundary);
+    CHECK(restarted.ledger().axial_boundary_impulse == straight.ledger().axial_boundary_impulse);
+  }
+}
