@@ -25,9 +25,11 @@ void Boundary::initialise(NodeFields& nodes, GeometryKind geometry) {
   // A driven component is held: one that no constraint lists yet (a scene built in C++ may give it
   // alone) gets its constraint here.
   for (const DrivenComponent& d : driven_) {
-    const auto p = static_cast<std::size_t>(d.node);
-    if (!(d.component == 0 ? held_x_[p] : held_y_[p])) constraints_.push_back({d.node, d.component == 0, d.component == 1});
-    (d.component == 0 ? held_x_ : held_y_)[p] = 1;
+    for (const Index n : d.nodes) {
+      const auto p = static_cast<std::size_t>(n);
+      if (!(d.component == 0 ? held_x_[p] : held_y_[p])) constraints_.push_back({n, d.component == 0, d.component == 1});
+      (d.component == 0 ? held_x_ : held_y_)[p] = 1;
+    }
   }
   for (const NodeConstraint& c : constraints_) {
     if (c.fix_x) { nodes.inv_mass_x[c.node] = 0.0; held_x_[static_cast<std::size_t>(c.node)] = 1; }
@@ -35,7 +37,9 @@ void Boundary::initialise(NodeFields& nodes, GeometryKind geometry) {
   }
   driven_x_.assign(size, 0);
   driven_y_.assign(size, 0);
-  for (const DrivenComponent& d : driven_) (d.component == 0 ? driven_x_ : driven_y_)[static_cast<std::size_t>(d.node)] = 1;
+  for (const DrivenComponent& d : driven_) {
+    for (const Index n : d.nodes) (d.component == 0 ? driven_x_ : driven_y_)[static_cast<std::size_t>(n)] = 1;
+  }
 }
 
 void Boundary::apply_loads(NodeFields& nodes, const ZoneFields& zones, GeometryKind geometry, double time) {
@@ -59,7 +63,9 @@ void Boundary::apply_loads(NodeFields& nodes, const ZoneFields& zones, GeometryK
 
 void Boundary::hold(NodeFields& nodes, double t_mid, double dt_mid, Books books) const {
   for (const DrivenComponent& d : driven_) {
-    (d.component == 0 ? nodes.u : nodes.v)[d.node] = d.value(t_mid);
+    const double value = d.value(t_mid);  // once per step and side
+    std::vector<double>& u = d.component == 0 ? nodes.u : nodes.v;
+    for (const Index n : d.nodes) u[n] = value;
   }
   // A held component: the boundary supplies F_b = M (u^{n+1/2} - u^{n-1/2}) / dt^n - F, whose work is
   // F_b ubar dt^n; for a constant value (u^{n+1/2} = u^{n-1/2}) that is -F u dt^n.

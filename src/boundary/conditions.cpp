@@ -53,18 +53,20 @@ void apply_fixed(const Condition&, const Side& side, GeometryKind, NodeFields& n
 // its value at t = 0 (u^{-1/2}) and driven by it from then on.
 void apply_velocity(const Condition& condition, const Side& side, GeometryKind, NodeFields& nodes, Target& target) {
   std::array<bool, 2> held{};
-  for (std::size_t k = 0; k < 2; ++k) held[k] = condition.velocity_of_time[k] || condition.velocity[k].has_value();
+  std::array<double, 2> initial{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    held[k] = condition.velocity_of_time[k] || condition.velocity[k].has_value();
+    if (condition.velocity_of_time[k]) {
+      initial[k] = condition.velocity_of_time[k](0.0);
+      target.driven.push_back({side.nodes, static_cast<int>(k), condition.velocity_of_time[k]});
+    } else if (condition.velocity[k]) {
+      initial[k] = *condition.velocity[k];
+    }
+  }
   for (const Index n : side.nodes) {
     target.hold(n, held[0], held[1]);
-    for (std::size_t k = 0; k < 2; ++k) {
-      std::vector<double>& u = k == 0 ? nodes.u : nodes.v;
-      if (condition.velocity_of_time[k]) {
-        u[n] = condition.velocity_of_time[k](0.0);
-        target.driven.push_back({n, static_cast<int>(k), condition.velocity_of_time[k]});
-      } else if (condition.velocity[k]) {
-        u[n] = *condition.velocity[k];
-      }
-    }
+    if (held[0]) nodes.u[n] = initial[0];
+    if (held[1]) nodes.v[n] = initial[1];
   }
 }
 

@@ -36,10 +36,11 @@ namespace boundary {
 // A value as a function of time t (s). An empty function stands for zero.
 using TimeFunction = std::function<double(double)>;
 
-// A held velocity component prescribed as a function of time: u^{n+1/2} = value(t^{n+1/2}). The node
-// must also be held in that component (a NodeConstraint).
+// A velocity component of some nodes (a side's) prescribed as a function of time, evaluated once per
+// step: u^{n+1/2} = value(t^{n+1/2}). The component is held (Boundary adds the NodeConstraint where
+// none holds it).
 struct DrivenComponent {
-  Index node = 0;
+  std::vector<Index> nodes;
   int component = 0;  // 0: first coordinate, 1: second
   TimeFunction value;
 };
