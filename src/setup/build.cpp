@@ -118,6 +118,9 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
   std::vector<BoundarySegment> body_segments;
   std::map<std::string, std::string> kinematic_sides;  // side -> the kind that holds it
   for (const SideBoundary& b : boundary) {
+    if (boundary::kind_of(b.condition).holds) kinematic_sides[b.side] = boundary::kind_of(b.condition).name;
+  }
+  for (const SideBoundary& b : boundary) {
     const auto found = std::find_if(sides.begin(), sides.end(), [&](const auto& s) { return s.first == b.side; });
     if (found == sides.end()) {
       std::string valid;
@@ -126,7 +129,6 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
     }
     const boundary::ConditionKind& kind = boundary::kind_of(b.condition);
     boundary::Side side{b.side, body.name, where + ".boundary." + b.side, patch.sides.at(found->second), {}};
-    if (kind.holds) kinematic_sides[b.side] = kind.name;
     if (kind.loads) {
       if (const auto held = kinematic_sides.find(b.side); held != kinematic_sides.end()) {
         fail(side.where, fmt::format("side \"{}\" of body \"{}\" is held by a {} condition and also given a {} load; a "

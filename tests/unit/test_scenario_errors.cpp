@@ -3,6 +3,7 @@
 // valid ones. Through the library API (krug::io::parse_scenario).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -414,6 +415,17 @@ TEST_CASE("boundary loads and functions of time: bad input names the JSON path",
       e = error.what();
     }
     CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_min"));
+    CHECK_THAT(e, Catch::Contains("held by a slip condition and also given a pressure load"));
+    // Whichever comes first in the list.
+    auto& sides = scenario.scene.bodies[0].boundary;
+    std::rotate(sides.begin(), sides.end() - 1, sides.end());
+    REQUIRE(sides.front().condition == krug::setup::SideCondition::pressure);
+    e = "(no error)";
+    try {
+      (void)krug::setup::build_simulation(scenario.scene);
+    } catch (const InputError& error) {
+      e = error.what();
+    }
     CHECK_THAT(e, Catch::Contains("held by a slip condition and also given a pressure load"));
   }
 }
