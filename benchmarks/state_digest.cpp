@@ -92,6 +92,12 @@ int main(int argc, char** argv) {
       {"striker_dishing", [&] { return from_file(examples + "/contact/striker_dishing.json"); }, 600},
       {"bullet_rigid_wall", [&] { return from_file(examples + "/contact/bullet_rigid_wall.json"); }, 600},
       {"fracture_high_velocity", [&] { return from_file(examples + "/fracture/high_velocity.json"); }, 4000},
+      // Boundary conditions: a velocity piston with slip walls, a skewed piston with symmetry sides, an
+      // RZ sector with a symmetry side and the axis, and fixed rims with contact.
+      {"piston_velocity", [&] { return from_file(examples + "/verification/piston.json"); }, 400},
+      {"saltzman", [&] { return from_file(examples + "/verification/saltzman.json"); }, 400},
+      {"noh_spherical", [&] { return from_file(examples + "/verification/noh_spherical.json"); }, 300},
+      {"paper_spaced_fixed_rims", [&] { return from_file(examples + "/paper/coarse/spaced_3x1mm_2.6g_z5.json"); }, 600},
   };
   int status = 0;
   for (const Problem& problem : list) {

@@ -5,15 +5,16 @@
 #
 #   cmake -DKRUG_ROOT=<source dir> -P cmake/check_layers.cmake
 #
-# The order, lowest first, as ranks; modules of one rank (material, fracture, particles) are siblings
-# that must not include one another.
-set(order core mesh material fracture particles contact hydro solver setup io run)
+# The order, lowest first, as ranks; modules of one rank (material, fracture, particles; contact,
+# boundary) are siblings that must not include one another.
+set(order core mesh material fracture particles contact boundary hydro solver setup io run)
 set(rank_core 0)
 set(rank_mesh 1)
 set(rank_material 2)
 set(rank_fracture 2)
 set(rank_particles 2)
 set(rank_contact 3)
+set(rank_boundary 3)
 set(rank_hydro 4)
 set(rank_solver 5)
 set(rank_setup 6)

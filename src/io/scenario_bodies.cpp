@@ -141,28 +141,44 @@ std::vector<setup::SideBoundary> read_boundary(JsonObject spec, const setup::Mes
     }
     setup::SideBoundary boundary;
     boundary.side = side;
-    std::string type;
+    // The kinds are the boundary package's registry; a bare name only for those without parameters.
+    const boundary::ConditionKind* kind = nullptr;
     std::optional<JsonObject> detail;
     if (spec.raw(side).is_string()) {
-      type = spec.choice(side, {"free", "symmetry", "slip", "fixed"});
+      kind = boundary::find_kind(spec.choice(side, boundary::kind_names(true)));
     } else {
       detail.emplace(spec.object(side));
-      type = detail->choice("type", {"free", "symmetry", "slip", "fixed", "velocity"});
+      kind = boundary::find_kind(detail->choice("type", boundary::kind_names()));
     }
-    boundary.condition = type == "symmetry" ? setup::SideCondition::symmetry
-                         : type == "slip"   ? setup::SideCondition::slip
-                         : type == "fixed"  ? setup::SideCondition::fixed
-                         : type == "velocity" ? setup::SideCondition::velocity
-                                              : setup::SideCondition::free;
+    boundary.condition = kind->kind;
     if (boundary.condition == setup::SideCondition::velocity) {
+      // Each component: a number (m/s), an expression of t (a velocity in time) or null (free).
       const Json& v = detail->raw("velocity");
-      const std::string expected = "[first, second] with numbers (m/s), or null for a free component";
+      const std::string expected =
+          "[first, second] with numbers (m/s) or expressions of t such as \"-100 * min(t / 1e-6, 1)\", or null for a free component";
       if (!v.is_array() || v.size() != 2) detail->fail("velocity", expected);
-      for (int k = 0; k < 2; ++k) {
-        if (!v[k].is_null() && !v[k].is_number()) detail->fail("velocity", expected);
-        if (v[k].is_number()) boundary.velocity[static_cast<std::size_t>(k)] = v[k].get<double>();
+      for (std::size_t k = 0; k < 2; ++k) {
+        if (v[k].is_number()) {
+          boundary.velocity[k] = v[k].get<double>();
+        } else if (v[k].is_string()) {
+          boundary.velocity_of_time[k] = time_function_from_json(v[k], fmt::format("{}[{}]", detail->path_of("velocity"), k));
+        } else if (!v[k].is_null()) {
+          detail->fail("velocity", expected);
+        }
       }
       detail->resolve("velocity", v);
+    }
+    if (kind->loads) {
+      // A pressure (against the outward normal) and a traction (along the side, counter-clockwise about
+      // the body), each a number (Pa) or an expression of t; the kind's own key is required.
+      for (const char* key : {"pressure", "traction"}) {
+        const bool own = kind->name == key;
+        const Json* value = own ? &detail->raw(key) : detail->optional_raw(key);
+        if (!value) continue;
+        (std::string_view(key) == "pressure" ? boundary.pressure : boundary.traction) =
+            time_function_from_json(*value, detail->path_of(key));
+        detail->resolve(key, *value);
+      }
     }
     if (detail) detail->finish();
     result.push_back(std::move(boundary));

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -14,24 +15,6 @@
 namespace krug::setup {
 
 namespace {
-
-// Which velocity component a symmetry or slip condition holds on a side: its normal.
-struct SideDirection {
-  bool along_first = false;   // all nodes share the first coordinate: the normal is the first axis
-  bool along_second = false;  // all nodes share the second coordinate
-};
-
-SideDirection side_direction(const Mesh& mesh, const std::vector<Index>& nodes) {
-  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
-  for (Index n : nodes) {
-    min_x = std::min(min_x, mesh.nodes.x[n]);
-    max_x = std::max(max_x, mesh.nodes.x[n]);
-    min_y = std::min(min_y, mesh.nodes.y[n]);
-    max_y = std::max(max_y, mesh.nodes.y[n]);
-  }
-  const double extent = std::max({max_x - min_x, max_y - min_y, 1e-300});
-  return {max_x - min_x <= 1e-9 * extent, max_y - min_y <= 1e-9 * extent};
-}
 
 [[noreturn]] void fail(const std::string& where, const std::string& message) {
   throw InputError(fmt::format("{}: {}", where, message));
@@ -123,22 +106,58 @@ void set_initial_fields(const InitialState& initial, const Body& body, GeometryK
   }
 }
 
-void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::Patch& patch,
-                    const std::vector<std::pair<std::string, std::string>>& sides, const std::string& body_name,
-                    GeometryKind geometry, Mesh& mesh, std::map<Index, NodeConstraint>& constraints,
-                    std::map<Index, std::array<std::string, 2>>& held_by, const std::string& where) {
+// Applies a body's side conditions through the boundary package's registry (boundary::condition_kinds()):
+// held components go to `constraints` (a node on two sides takes both), with the condition that holds
+// each in `held_by`; driven components and loads to `target`. Functions of time are checked for finite
+// values over the run.
+void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::Patch& patch, const Body& body,
+                    const std::vector<std::pair<std::string, std::string>>& sides, GeometryKind geometry, Mesh& mesh,
+                    double end_time, std::map<Index, NodeConstraint>& constraints,
+                    std::map<Index, std::array<std::string, 2>>& held_by, boundary::Target& target,
+                    const std::string& where) {
+  std::vector<BoundarySegment> body_segments;
+  std::map<std::string, std::string> kinematic_sides;  // side -> the kind that holds it
+  for (const SideBoundary& b : boundary) {
+    if (boundary::kind_of(b.condition).holds) kinematic_sides[b.side] = boundary::kind_of(b.condition).name;
+  }
   for (const SideBoundary& b : boundary) {
     const auto found = std::find_if(sides.begin(), sides.end(), [&](const auto& s) { return s.first == b.side; });
     if (found == sides.end()) {
       std::string valid;
       for (const auto& [user, _] : sides) valid += (valid.empty() ? "" : ", ") + user;
-      fail(where + ".boundary." + b.side, fmt::format("body \"{}\" has no side of that name; its sides: {}", body_name, valid));
+      fail(where + ".boundary." + b.side, fmt::format("body \"{}\" has no side of that name; its sides: {}", body.name, valid));
     }
-    const std::vector<Index>& nodes = patch.sides.at(found->second);
-    static constexpr const char* condition_names[] = {"free", "symmetry", "slip", "fixed", "velocity"};
-    const std::string label =
-        fmt::format("{}.boundary.{} ({})", where, b.side, condition_names[static_cast<int>(b.condition)]);
-    auto constrain = [&](Index n, bool fx, bool fy) {
+    const boundary::ConditionKind& kind = boundary::kind_of(b.condition);
+    boundary::Side side{b.side, body.name, where + ".boundary." + b.side, patch.sides.at(found->second), {}};
+    if (kind.loads) {
+      if (const auto held = kinematic_sides.find(b.side); held != kinematic_sides.end()) {
+        fail(side.where, fmt::format("side \"{}\" of body \"{}\" is held by a {} condition and also given a {} load; a "
+                                     "held face takes no load (the condition would absorb it)",
+                                     b.side, body.name, held->second, kind.name));
+      }
+      if (body_segments.empty()) body_segments = boundary_segments(mesh, body.zone_begin, body.zone_end);
+      const std::set<Index> on_side(side.nodes.begin(), side.nodes.end());
+      for (const BoundarySegment& s : body_segments) {
+        if (on_side.contains(s.a) && on_side.contains(s.b)) side.segments.push_back(s);
+      }
+    }
+    // A function of time must give finite values over the run: sampled at 1001 times in [0, end_time].
+    auto check_finite = [&](const boundary::TimeFunction& f, const std::string& key) {
+      if (!f) return;
+      for (int i = 0; i <= 1000; ++i) {
+        const double t = end_time * i / 1000.0;
+        const double value = f(t);
+        if (!std::isfinite(value)) {
+          fail(side.where + "." + key, fmt::format("gives {} at t = {:g} s; expected a finite value over the run", value, t));
+        }
+      }
+    };
+    check_finite(b.velocity_of_time[0], "velocity[0]");
+    check_finite(b.velocity_of_time[1], "velocity[1]");
+    check_finite(b.pressure, "pressure");
+    check_finite(b.traction, "traction");
+    const std::string label = fmt::format("{} ({})", side.where, kind.name);
+    target.hold = [&](Index n, bool fx, bool fy) {
       NodeConstraint& c = constraints[n];
       c.node = n;
       c.fix_x = c.fix_x || fx;
@@ -146,40 +165,9 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
       if (fx) held_by[n][0] = label;
       if (fy) held_by[n][1] = label;
     };
-    switch (b.condition) {
-      case SideCondition::free:
-        break;
-      case SideCondition::symmetry:
-      case SideCondition::slip: {
-        const SideDirection d = side_direction(mesh, nodes);
-        if (!d.along_first && !d.along_second) {
-          fail(where + ".boundary." + b.side,
-               fmt::format("side \"{}\" of body \"{}\" is not a straight line along an axis; a {} condition needs a side "
-                           "of constant {} or constant {}",
-                           b.side, body_name, b.condition == SideCondition::slip ? "slip" : "symmetry",
-                           axis_name(geometry, 0), axis_name(geometry, 1)));
-        }
-        for (Index n : nodes) {
-          constrain(n, d.along_first, d.along_second);
-          if (d.along_first) mesh.nodes.u[n] = 0.0;
-          if (d.along_second) mesh.nodes.v[n] = 0.0;
-        }
-        break;
-      }
-      case SideCondition::fixed:
-        for (Index n : nodes) {
-          constrain(n, true, true);
-          mesh.nodes.u[n] = mesh.nodes.v[n] = 0.0;
-        }
-        break;
-      case SideCondition::velocity:
-        for (Index n : nodes) {
-          constrain(n, b.velocity[0].has_value(), b.velocity[1].has_value());
-          if (b.velocity[0]) mesh.nodes.u[n] = *b.velocity[0];
-          if (b.velocity[1]) mesh.nodes.v[n] = *b.velocity[1];
-        }
-        break;
-    }
+    const boundary::Condition condition{b.condition, b.velocity, b.velocity_of_time, b.pressure, b.traction};
+    kind.apply(condition, side, geometry, mesh.nodes, target);
+    target.hold = nullptr;
   }
 }
 
@@ -275,6 +263,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
   setup.fracture = scene.fracture;
   std::map<Index, NodeConstraint> constraints;
   std::map<Index, std::array<std::string, 2>> held_by;  // the boundary condition that holds each component
+  boundary::Target target;  // driven components and loads of every body
   std::vector<std::string> where;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDescription& description = scene.bodies[i];
@@ -326,8 +315,8 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
       setup.mesh.zones.density[z] = scene.materials[static_cast<std::size_t>(body.material)].reference_density;
     }
     set_initial_fields(description.initial, body, scene.geometry, setup.mesh, where.back());
-    apply_boundary(description.boundary, patch, side_names(description.mesh, scene.geometry), body.name, scene.geometry,
-                   setup.mesh, constraints, held_by, where.back());
+    apply_boundary(description.boundary, patch, body, side_names(description.mesh, scene.geometry), scene.geometry,
+                   setup.mesh, scene.controls.end_time, constraints, held_by, target, where.back());
     setup.bodies.push_back(body);
   }
   // Bodies may touch but not overlap: a node or a zone centre of one inside a zone of another is an input error.
@@ -357,6 +346,13 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     }
   }
   for (const auto& [node, c] : constraints) setup.constraints.push_back(c);
+  if (!target.loads.empty() && scene.geometry == GeometryKind::axisymmetric &&
+      scene.controls.axisymmetric_form == AxisymmetricForm::area_weighted) {
+    fail("controls.axisymmetric_form", "pressure and traction loads are weighted as the control-volume corner forces are; "
+                                       "the \"area_weighted\" form does not take them");
+  }
+  setup.driven = std::move(target.driven);
+  setup.loads = std::move(target.loads);
   setup.contact = scene.contact;
   check_held_contact(setup, constraints, held_by, scene.geometry);
   setup.controls = scene.controls;

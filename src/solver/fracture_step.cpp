@@ -55,7 +55,7 @@ bool Simulation::face_is_free(Index zone, int edge) const {
   if (a == b || state_.mesh.zones.neighbour[zone][edge] >= 0) return false;
   // Not on the axis, a symmetry plane or a fixed rim: both ends held in the same direction.
   const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-  return !((held_x_[ua] && held_x_[ub]) || (held_y_[ua] && held_y_[ub]));
+  return !((boundary_.held_x()[ua] && boundary_.held_x()[ub]) || (boundary_.held_y()[ua] && boundary_.held_y()[ub]));
 }
 
 void Simulation::convert_fractured_zones() {
@@ -134,7 +134,7 @@ void Simulation::convert_zone(Index z, ConversionRule rule) {
   const std::size_t b = static_cast<std::size_t>(state_.mesh.zones.body[z]);
   const ConversionEnergy energy =
       convert_zone_to_particles(state_.mesh, state_.particles, z, controls_.fracture.particles_per_zone,
-                                state_.time + state_.time_step_next, state_.zones_per_node, held_x_, held_y_);
+                                state_.time + state_.time_step_next, state_.zones_per_node, boundary_.held_x(), boundary_.held_y());
   state_.ledger.energy.converted += energy.converted();
   state_.body_converted_energy[b] += energy.converted();
   state_.ledger.energy.internal -= energy.internal;

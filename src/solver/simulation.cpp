@@ -63,7 +63,7 @@ Simulation::Simulation(SimulationSetup setup)
     : geometry_(setup.geometry),
       materials_(std::move(setup.materials)),
       bodies_(std::move(setup.bodies)),
-      constraints_(std::move(setup.constraints)),
+      boundary_(std::move(setup.constraints), std::move(setup.driven), std::move(setup.loads)),
       controls_(setup.controls) {
   state_.mesh = std::move(setup.mesh);
   state_.fracture_counts.assign(bodies_.size(), FractureCounts{});
@@ -143,22 +143,13 @@ void Simulation::initialise() {
       }
     }
   }
-  // Per-DOF inverse masses; the axis holds u_r = 0 in axisymmetric geometry.
+  // Per-DOF inverse masses, zero where a condition holds the component (the axis in RZ among them).
   for (Index p = 0; p < nodes.size(); ++p) {
     const double inverse = nodes.mass[p] > 0.0 ? 1.0 / nodes.mass[p] : 0.0;
     nodes.inv_mass_x[p] = inverse;
     nodes.inv_mass_y[p] = inverse;
-    if (axisymmetric && nodes.y[p] == 0.0) {
-      nodes.v[p] = 0.0;
-      constraints_.push_back({p, false, true});
-    }
   }
-  held_x_.assign(static_cast<std::size_t>(nodes.size()), 0);
-  held_y_.assign(static_cast<std::size_t>(nodes.size()), 0);
-  for (const NodeConstraint& c : constraints_) {
-    if (c.fix_x) { nodes.inv_mass_x[c.node] = 0.0; held_x_[static_cast<std::size_t>(c.node)] = 1; }
-    if (c.fix_y) { nodes.inv_mass_y[c.node] = 0.0; held_y_[static_cast<std::size_t>(c.node)] = 1; }
-  }
+  boundary_.initialise(nodes, geometry_);
 
   // Pressure and wave speed from the EOS at the initial state.
   for (const Body& body : bodies_) {
@@ -337,6 +328,7 @@ void Simulation::compute_forces() {
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     sum_corner_forces(state_.mesh, node_corners_, first, last);
   });
+  if (boundary_.has_loads()) boundary_.apply_loads(state_.mesh.nodes, state_.mesh.zones, geometry_, state_.time);
 }
 
 void Simulation::predict_velocities() {
@@ -353,14 +345,8 @@ void Simulation::predict_velocities() {
       nodes.v[p] = nodes.v_old[p] + dt_mid * nodes.force_y[p] * nodes.inv_mass_y[p];
     }
   });
-  // A held DOF keeps its velocity: the boundary supplies -F, doing work -F u dt on the system.
-  for (const NodeConstraint& c : constraints_) {
-    if (c.fix_x) {
-      state_.ledger.energy.boundary -= dt_mid * nodes.force_x[c.node] * nodes.u[c.node];
-      state_.ledger.axial_boundary_impulse -= dt_mid * nodes.force_x[c.node];
-    }
-    if (c.fix_y) state_.ledger.energy.boundary -= dt_mid * nodes.force_y[c.node] * nodes.v[c.node];
-  }
+  // Held components keep their value or take v(t^{n+1/2}); the boundary books what holds them.
+  boundary_.hold(nodes, state_.time + 0.5 * state_.time_step_next, dt_mid, boundary_books());
 }
 
 void Simulation::solve_contact_reactions() {
@@ -376,7 +362,7 @@ void Simulation::solve_contact_reactions() {
 
 void Simulation::book_contact_work(double dt_mid) {
   // W_contact = sum dt^n R . ubar over the nodes that received a reaction; on a held DOF the
-  // boundary cancels R, doing -R u dt (and taking the axial impulse). The overlap line is the part of
+  // boundary cancels R (boundary::Boundary::book_reaction). The overlap line is the part of
   // it done by the contacts that carry a pre-existing overlap (docs/theory.md §3): the rest, the work
   // of contacts that started the step apart, is dissipative.
   const NodeFields& nodes = state_.mesh.nodes;
@@ -395,11 +381,7 @@ void Simulation::book_contact_work(double dt_mid) {
     state_.ledger.energy.contact += dt_mid * (r.x * ubar + r.y * vbar);
     const Vec2 overlap = contact_.overlap_reaction_force(point);
     state_.ledger.energy.overlap += dt_mid * (overlap.x * ubar + overlap.y * vbar);
-    if (held_x_[static_cast<std::size_t>(p)]) {
-      state_.ledger.energy.boundary -= dt_mid * r.x * nodes.u[p];
-      state_.ledger.axial_boundary_impulse -= dt_mid * r.x;
-    }
-    if (held_y_[static_cast<std::size_t>(p)]) state_.ledger.energy.boundary -= dt_mid * r.y * nodes.v[p];
+    boundary_.book_reaction(nodes, p, r, dt_mid, boundary_books());
   }
 }
 
@@ -407,6 +389,7 @@ void Simulation::correct_and_move() {
   NodeFields& nodes = state_.mesh.nodes;
   const double dt = state_.time_step_next;
   if (!contact_.empty()) book_contact_work(0.5 * (state_.time_step_previous + state_.time_step_next));
+  if (boundary_.has_loads()) boundary_.book_loads(nodes, 0.5 * (state_.time_step_previous + state_.time_step_next), boundary_books());
   for_each_block(0, nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     for (Index p = first; p < last; ++p) {
       nodes.x[p] += dt * nodes.u[p];

@@ -3,6 +3,7 @@
 // valid ones. Through the library API (krug::io::parse_scenario).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -366,5 +367,78 @@ TEST_CASE("unit slips that stay consistent are caught by plausibility checks, an
   SECTION("an unknown check name") {
     CHECK_THAT(error_of(replaced(base, "\"end_time\"", "\"allow_unusual\": [\"everything\"], \"end_time\"")),
                Catch::StartsWith("allow_unusual: expected an array of check names"));
+  }
+}
+
+// Boundary loads and velocities in time (docs/scenario-format.md, "Boundary conditions"): a bad
+// value names its JSON path.
+TEST_CASE("boundary loads and functions of time: bad input names the JSON path", "[scenario][boundary]") {
+  const std::string base = valid_scenario();
+  auto on_x_max = [&](const std::string& condition) {
+    return replaced(base, "\"boundary\": { \"x_min\": \"slip\" }", "\"boundary\": { \"x_min\": \"slip\", \"x_max\": " + condition + " }");
+  };
+  SECTION("valid: a constant pressure, a pressure and traction in time, a velocity ramp") {
+    CHECK(error_of(on_x_max("{ \"type\": \"pressure\", \"pressure\": 1e5 }")) == "(no error)");
+    CHECK(error_of(on_x_max("{ \"type\": \"traction\", \"traction\": \"1e4 * t\", \"pressure\": \"1e5 * min(t / 0.01, 1)\" }")) ==
+          "(no error)");
+    CHECK(error_of(on_x_max("{ \"type\": \"velocity\", \"velocity\": [\"-100 * min(t / 1e-6, 1)\", null] }")) == "(no error)");
+  }
+  SECTION("an unparseable p(t)") {
+    const auto e = error_of(on_x_max("{ \"type\": \"pressure\", \"pressure\": \"1e5 * (t\" }"));
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_max.pressure"));
+    CHECK_THAT(e, Catch::Contains("cannot evaluate expression"));
+  }
+  SECTION("a p(t) that is not finite during the run") {
+    const auto e = error_of(on_x_max("{ \"type\": \"pressure\", \"pressure\": \"1e5 / (t - 0.05)\" }"));
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_max.pressure"));
+    CHECK_THAT(e, Catch::Contains("t = 0.05"));
+    CHECK_THAT(e, Catch::Contains("finite"));
+  }
+  SECTION("a non-finite traction and a velocity of position instead of time") {
+    CHECK_THAT(error_of(on_x_max("{ \"type\": \"traction\", \"traction\": \"sqrt(t - 0.1)\" }")),
+               Catch::Contains("bodies[0].boundary.x_max.traction"));
+    const auto e = error_of(on_x_max("{ \"type\": \"velocity\", \"velocity\": [\"x * t\", null] }"));
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_max.velocity[0]"));
+    CHECK_THAT(e, Catch::Contains("variables: t, pi"));
+  }
+  SECTION("a pressure without its value, or as a bare name") {
+    CHECK_THAT(error_of(on_x_max("{ \"type\": \"pressure\" }")), Catch::Contains("bodies[0].boundary.x_max.pressure"));
+    const auto e = error_of(on_x_max("\"pressure\""));
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_max"));
+    CHECK_THAT(e, Catch::Contains("slip"));
+  }
+  SECTION("a pressure on the axis, where the radial velocity is held") {
+    std::string rz = replaced(base, "\"geometry\": \"planar\"", "\"geometry\": \"axisymmetric\"");
+    rz = replaced(rz, "\"x\": { \"from\": 0, \"to\": 1, \"zones\": 4 }", "\"z\": { \"from\": 0, \"to\": 1, \"zones\": 4 }");
+    rz = replaced(rz, "\"y\": { \"from\": 0, \"to\": 1, \"zones\": 4 }", "\"r\": { \"from\": 0, \"to\": 1, \"zones\": 4 }");
+    rz = replaced(rz, "\"boundary\": { \"x_min\": \"slip\" }", "\"boundary\": { \"r_min\": { \"type\": \"pressure\", \"pressure\": 1e5 } }");
+    const auto e = error_of(rz);
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.r_min"));
+    CHECK_THAT(e, Catch::Contains("lies on the axis"));
+  }
+  SECTION("a pressure on a side that a condition also holds (a scene built in C++)") {
+    krug::io::Scenario scenario = parse_scenario(base, "test.json");
+    krug::setup::SideBoundary load{"x_min", krug::setup::SideCondition::pressure, {}};
+    load.pressure = [](double) { return 1e5; };
+    scenario.scene.bodies[0].boundary.push_back(load);
+    std::string e = "(no error)";
+    try {
+      (void)krug::setup::build_simulation(scenario.scene);
+    } catch (const InputError& error) {
+      e = error.what();
+    }
+    CHECK_THAT(e, Catch::Contains("bodies[0].boundary.x_min"));
+    CHECK_THAT(e, Catch::Contains("held by a slip condition and also given a pressure load"));
+    // Whichever comes first in the list.
+    auto& sides = scenario.scene.bodies[0].boundary;
+    std::rotate(sides.begin(), sides.end() - 1, sides.end());
+    REQUIRE(sides.front().condition == krug::setup::SideCondition::pressure);
+    e = "(no error)";
+    try {
+      (void)krug::setup::build_simulation(scenario.scene);
+    } catch (const InputError& error) {
+      e = error.what();
+    }
+    CHECK_THAT(e, Catch::Contains("held by a slip condition and also given a pressure load"));
   }
 }

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "krug/boundary/conditions.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
 #include "krug/solver/simulation.hpp"
@@ -57,18 +58,15 @@ struct MeshDescription {
 // side name).
 std::vector<std::pair<std::string, std::string>> side_names(const MeshDescription& mesh, GeometryKind geometry);
 
-enum class SideCondition {
-  free,      // no constraint
-  symmetry,  // the normal velocity held at zero (the side must be a straight line along an axis)
-  slip,      // the same as symmetry, for a rigid wall the body slides on
-  fixed,     // both components held at zero
-  velocity   // the given components held at the given values (an empty component stays free)
-};
+// The condition kinds are the boundary package's registry (boundary::condition_kinds()).
+using SideCondition = boundary::Kind;
 
 struct SideBoundary {
   std::string side;
   SideCondition condition = SideCondition::free;
-  std::array<std::optional<double>, 2> velocity;  // m/s, for SideCondition::velocity
+  std::array<std::optional<double>, 2> velocity;         // m/s, for SideCondition::velocity
+  std::array<boundary::TimeFunction, 2> velocity_of_time{};  // velocity: a component as a function of t (m/s), replacing velocity[k]
+  boundary::TimeFunction pressure{}, traction{};             // Pa as functions of t, for SideCondition::pressure and ::traction
 };
 
 // Energy E (J; per unit thickness in planar geometry, whole body in axisymmetric) put into the zones

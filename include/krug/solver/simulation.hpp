@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "krug/boundary/boundary.hpp"
 #include "krug/contact/contact.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/fracture/failure_law.hpp"
@@ -33,14 +34,6 @@ struct Body {
   }
 };
 
-// A node whose velocity components are held at their initial values: zero for symmetry planes,
-// slip planes, the axis and fixed rims; the prescribed value for a moving boundary.
-struct NodeConstraint {
-  Index node = 0;
-  bool fix_x = false;
-  bool fix_y = false;
-};
-
 // Everything a run starts from. Zone density and specific energy and node velocity are set in
 // `mesh`; masses, volumes and pressures are derived by the Simulation.
 struct SimulationSetup {
@@ -48,7 +41,9 @@ struct SimulationSetup {
   Mesh mesh;
   std::vector<Material> materials;
   std::vector<Body> bodies;
-  std::vector<NodeConstraint> constraints;
+  std::vector<NodeConstraint> constraints;               // held components (the axis in RZ is added by the Simulation)
+  std::vector<boundary::DrivenComponent> driven;         // held components that follow a function of time
+  std::vector<boundary::FaceLoad> loads;                 // pressure and traction on faces
   contact::ContactSetup contact;
   std::vector<fracture::FailureLaw> fracture;  // per material; empty or not enabled (fracture::enabled): no fracture
   Controls controls;
@@ -166,7 +161,7 @@ class Simulation {
   // The CFL number of a body's zones: controls.cfl_fluid without strength, controls.cfl with it.
   double cfl_of(const Body& body) const;
   // The recipe, in order.
-  void compute_forces();          // 1. F^n: corner forces of every zone
+  void compute_forces();          // 1. F^n: corner forces of every zone, and the boundary loads
   void update_area_weighted_scale();  // s_p = M_p / M^A_p and the booking weights, at the current positions (area-weighted RZ)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from the predicted gaps; the contact solver applies it as it goes:
@@ -182,6 +177,7 @@ class Simulation {
   void share_edge_limiters();  // the edge-viscosity limiter computed once per edge (from the connectivity)
   void measure_ledger();
   void book_contact_work(double dt_mid);
+  boundary::Books boundary_books() { return {state_.ledger.energy.boundary, state_.ledger.axial_boundary_impulse}; }
   enum class ConversionRule { surface, interior, erosion };
   void convert_zone(Index zone, ConversionRule rule);
   bool face_is_free(Index zone, int edge) const;
@@ -193,8 +189,7 @@ class Simulation {
   SimulationState state_;
   std::vector<Material> materials_;
   std::vector<Body> bodies_;
-  std::vector<NodeConstraint> constraints_;
-  std::vector<std::uint8_t> held_x_, held_y_;  // per node: DOF held by a condition
+  boundary::Boundary boundary_;  // kinematic conditions and loads: their slots in the step, their books
   contact::ContactSolver contact_;
   std::vector<fracture::FailureLaw> failure_laws_;  // per body
   bool fracture_enabled_ = false;
