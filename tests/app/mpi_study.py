@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`krug sweep` and `krug ballistic` under mpirun on this machine (label `app`, registered when the app
 is built with MPI): the tables equal those of `--jobs` row for row (every column but wall_seconds),
-a failed variant is survived and reported, and a study whose folder was left half-done (summaries
+a failed variant is survived and reported, a long variant does not hold the others back, and a study whose folder was left half-done (summaries
 deleted or truncated; an mpirun killed after its first round) resumes to the same table without
 running the finished variants again.
 
@@ -117,6 +117,19 @@ def sweep(args, work):
     same_table(os.path.join(work, "sweep_jobs_first.csv"), os.path.join(jobs_dir, "sweep.csv"), "sweep: resumed --jobs table = first")
 
 
+def long_run(args, work):
+    """A long variant holds only its own rank: the short ones go on around it."""
+    scenario = os.path.join(args.examples, "verification", "slab_impact.json")
+    code, text = run(mpirun(args, 2) + ["sweep", scenario, "--set", "end_time=1.5e-3,4e-6,4e-6,4e-6,4e-6,4e-6", "--set",
+                                        'output={"plots": false, "pictures": {"enabled": false}, "history_interval": 1e-6}',
+                                        "--out", os.path.join(work, "sweep_long")],
+                     os.path.join(work, "sweep_long.log"), mpi_environment())
+    check(code == 0, f"a sweep with one long variant completes (got {code})")
+    ended = [line.split()[2] for line in text.splitlines() if line.startswith("krug: ") and "/6 " in line]
+    check(len(ended) == 6 and ended[-1].startswith("000_") and all(not e.startswith("000_") for e in ended[:-1]),
+          f"the five short variants ended while the long one (77 000 cycles) ran: {ended}")
+
+
 def ballistic(args, work):
     scenario = os.path.join(args.data, "ballistic_plate.json")
     base = ["ballistic", scenario, "--velocity", "60,400", "--tolerance", "10"]
@@ -163,6 +176,7 @@ def main():
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     sweep(args, args.work)
+    long_run(args, args.work)
     ballistic(args, args.work)
     if failures:
         print(f"{len(failures)} checks failed")
