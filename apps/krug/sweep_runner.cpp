@@ -58,9 +58,10 @@ int run_sweep(const SweepArguments& arguments, const Workers& workers, const std
   io::write_sweep_table(out, parameters, variants);
   const auto completed = static_cast<std::size_t>(std::count(codes.begin(), codes.end(), 0));
   const auto failed = static_cast<std::size_t>(std::count(codes.begin(), codes.end(), 1));
+  const auto started = static_cast<std::size_t>(std::count_if(run_codes.begin(), run_codes.end(), [](int c) { return c >= 0; }));
   std::printf("krug: sweep of %zu variants: %zu completed, %zu failed, %zu did not finish (%zu run now, %zu kept from "
               "an earlier sweep); table in %s\n",
-              variants.size(), completed, failed, variants.size() - completed - failed, list.size(), kept,
+              variants.size(), completed, failed, variants.size() - completed - failed, started, kept,
               (out / "sweep.csv").string().c_str());
   if (interrupted.load()) return 128 + static_cast<int>(signal_number);
   return completed == variants.size() ? 0 : 1;
