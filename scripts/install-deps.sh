@@ -9,6 +9,7 @@ packages=(
   libmuparser-dev                                                       # expressions in scenarios
   zlib1g-dev                                                            # compressed binary VTK files
   libcairo2-dev                                                         # PNG pictures (app only)
+  libopenmpi-dev openmpi-bin                                            # studies on MPI ranks (app only)
   python3-numpy python3-matplotlib python3-meshio                      # plots, read-back tests
   clang libclang-rt-14-dev                                              # libFuzzer (scripts/fuzz.sh)
 )

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <thread>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -44,7 +44,7 @@ std::string read_file(const std::filesystem::path& file) {
 
 }  // namespace
 
-int run_ballistic(const BallisticArguments& arguments, const std::atomic<bool>& interrupted,
+int run_ballistic(const BallisticArguments& arguments, const Workers& workers, const std::atomic<bool>& interrupted,
                   const volatile std::sig_atomic_t& signal_number) {
   // The range.
   const auto comma = arguments.velocity.find(',');
@@ -57,7 +57,7 @@ int run_ballistic(const BallisticArguments& arguments, const std::atomic<bool>& 
   }
   options.tolerance = arguments.tolerance;
   options.points_above = arguments.points_above;
-  options.batch = arguments.jobs > 0 ? arguments.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  options.batch = arguments.jobs > 0 ? arguments.jobs : std::max(1, workers.slots);
 
   // The scenario: a penetration scenario whose projectile has a velocity vector; the variants at both
   // ends are checked by the reader before anything runs.
@@ -82,30 +82,43 @@ int run_ballistic(const BallisticArguments& arguments, const std::atomic<bool>& 
   if (!arguments.quiet) {
     std::fprintf(stderr,
                  "krug: ballistic limit of %s (projectile %s, %.1f m/s as given) between %.1f and %.1f m/s, to %.1f m/s, "
-                 "%d runs at a time, into %s\n",
+                 "%d runs per round (%s), into %s\n",
                  scenario.string().c_str(), projectile.name.c_str(), projectile.speed, options.v_min, options.v_max,
-                 options.tolerance, options.batch, out.string().c_str());
+                 options.tolerance, options.batch, workers.description.c_str(), out.string().c_str());
   }
 
-  // One batch of speeds: each a krug run child in DIR/runs/v<speed>/.
-  std::size_t started = 0;
+  // One batch of speeds: each a krug run child in DIR/runs/v<speed>/, unless that folder already holds
+  // a finished run of the same variant (an earlier, interrupted study into this folder).
   auto evaluate = [&](const std::vector<double>& speeds) {
     std::vector<RunJob> jobs;
-    for (double v : speeds) {
+    std::vector<std::size_t> speed_of;  // job index -> speed index
+    std::vector<int> codes(speeds.size(), -1);
+    std::vector<bool> kept(speeds.size(), false);
+    std::vector<std::filesystem::path> directories;
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      const double v = speeds[i];
       const std::filesystem::path directory = out / "runs" / run::ballistic_run_name(v);
+      directories.push_back(directory);
+      const std::filesystem::path file = directory / "scenario.json";
+      const std::string variant = run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string());
+      if (const std::optional<int> finished = finished_run(directory, io::parse_scenario(variant, file.string()).resolved_json)) {
+        codes[i] = *finished;
+        kept[i] = true;
+        continue;
+      }
       std::filesystem::remove_all(directory, error);
       std::filesystem::create_directories(directory, error);
-      const std::filesystem::path file = directory / "scenario.json";
-      io::write_text_atomically(file, run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string()));
+      io::write_text_atomically(file, variant);
       std::vector<std::string> extra;
       if (!arguments.pictures) extra = {"--no-pictures", "--no-plots"};
       jobs.push_back({file, directory, extra});
+      speed_of.push_back(i);
     }
     std::vector<run::BallisticOutcome> outcomes(speeds.size());
-    const std::vector<int> codes = run_jobs(jobs, options.batch, interrupted, signal_number, {});
+    const std::vector<int> run_codes = workers.run(jobs, {});
+    for (std::size_t k = 0; k < run_codes.size(); ++k) codes[speed_of[k]] = run_codes[k];
     for (std::size_t i = 0; i < speeds.size(); ++i) {
-      ++started;
-      const std::filesystem::path summary = jobs[i].directory / "summary.json";
+      const std::filesystem::path summary = directories[i] / "summary.json";
       if (std::filesystem::exists(summary)) {
         outcomes[i] = run::outcome_from_summary(read_file(summary), speeds[i]);
       } else {
@@ -116,14 +129,14 @@ int run_ballistic(const BallisticArguments& arguments, const std::atomic<bool>& 
                                            : fmt::format("no summary.json (exit code {}; see log.txt)", codes[i]);
       }
       if (codes[i] >= 128 && outcomes[i].message.empty()) outcomes[i].message = "interrupted";
-      outcomes[i].directory = std::filesystem::relative(jobs[i].directory, out, error).string();
+      outcomes[i].directory = std::filesystem::relative(directories[i], out, error).string();
       if (!arguments.quiet) {
         const run::BallisticOutcome& o = outcomes[i];
         std::string detail;
         if (o.result == run::ImpactResult::perforated) detail = fmt::format(": residual velocity {:.1f} m/s", o.residual_velocity);
         if (o.result == run::ImpactResult::failed || o.result == run::ImpactResult::unfinished) detail = ": " + o.message;
-        std::fprintf(stderr, "krug: %8.2f m/s %s%s (%.1f s)\n", speeds[i], run::to_string(o.result), detail.c_str(),
-                     o.wall_seconds);
+        std::fprintf(stderr, "krug: %8.2f m/s %s%s (%.1f s%s)\n", speeds[i], run::to_string(o.result), detail.c_str(),
+                     o.wall_seconds, kept[i] ? ", kept from an earlier study" : "");
       }
     }
     if (interrupted.load()) throw Interrupted();

@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -13,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -24,6 +26,7 @@
 #include "pictures.hpp"
 #include "plots.hpp"
 #include "ballistic_runner.hpp"
+#include "mpi_workers.hpp"
 #include "sweep_runner.hpp"
 
 namespace {
@@ -38,22 +41,28 @@ constexpr std::string_view usage = R"(usage:
       with the scenario.resolved.json next to it; outputs go to DIR (default: the checkpoint's).
   krug validate SCENARIO.json [--quiet]
       Checks a scenario without running it, and describes the set-up the run would start from.
-  krug sweep SCENARIO.json --set PATH=V1,V2,... [--set ...] [--jobs N] [--out DIR] [--quiet]
+  krug sweep SCENARIO.json --set PATH=V1,V2,... [--set ...] [--jobs N] [--out DIR] [--mpi] [--quiet]
       Runs every combination of the values (PATH like materials.steel.density or
       bodies[0].initial.velocity[0]) in parallel processes into DIR/<variant>/ and writes
-      DIR/sweep.csv (default DIR: out/<scenario>-sweep).
+      DIR/sweep.csv (default DIR: out/<scenario>-sweep). Variants that an earlier sweep into DIR
+      finished (a whole summary.json of the same scenario) are kept, not run again.
   krug materials [NAME]
       Lists the material library (name, density, equation of state, strength, source); with a NAME,
       every constant of that set with its source. A scenario names a set as "materials": {"plate":
       "al6061-t6"} or {"plate": {"base": "al6061-t6", ...overrides...}} (docs/materials.md).
   krug ballistic SCENARIO.json --velocity MIN,MAX [--tolerance DV] [--points-above N] [--jobs N]
-                 [--out DIR] [--pictures] [--keep-end-time] [--quiet]
+                 [--out DIR] [--pictures] [--keep-end-time] [--mpi] [--quiet]
       Ballistic limit of a scenario with a "penetration" block: the projectile's initial velocity is
       scaled (direction kept); a bracket of MIN and MAX is narrowed by N-section (N = --jobs runs at a
       time) until no wider than DV (default 10 m/s), then --points-above (default 3) perforating runs
       above it feed a Lambert-Jonas fit. Each speed runs as krug run in DIR/runs/v<speed>/; writes
       DIR/ballistic.csv, ballistic.json, ballistic.png (default DIR: out/<scenario>-ballistic).
       Below the scenario's speed the end time is stretched by the speed ratio unless --keep-end-time.
+      Speeds an earlier study into DIR finished are kept, not run again.
+  mpirun -np N krug sweep|ballistic ...
+      (a krug built with MPI) The runs go to the N ranks, one at a time each, rank 0 included; DIR
+      must be on a file system every rank sees. Ballistic rounds have N runs unless --jobs says
+      otherwise; a sweep ignores --jobs. --mpi uses MPI even when not started by mpirun.
   krug --help | --version
 
 Exit codes: 0 completed, 1 run failed, 2 bad input or usage, 3 unexpected error,
@@ -151,6 +160,7 @@ struct Arguments {
   int points_above = 3;           // ballistic
   bool keep_end_time = false;     // ballistic
   bool run_pictures = false;      // ballistic: the runs' pictures and plots
+  bool mpi = false;               // sweep, ballistic: on MPI ranks even when not started by a launcher
   int threads = 0;  // 0: the scenario's controls.threads
 };
 
@@ -256,6 +266,13 @@ int run(const Arguments& args) {
   return 1;
 }
 
+// Who runs a study's runs: the MPI ranks, or child processes here (--jobs, default one per hardware thread).
+krug::app::Workers workers(const Arguments& args, krug::app::MpiStudy* mpi) {
+  if (mpi) return mpi->workers(interrupted, signal_number);
+  const int jobs = args.jobs > 0 ? args.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return krug::app::local_workers(jobs, interrupted, signal_number);
+}
+
 }  // namespace
 
 // The x86-64 level this binary was compiled for (CMake's KRUG_ARCH), and whether this processor runs it.
@@ -347,6 +364,8 @@ int main(int argc, char** argv) {
       args.keep_end_time = true;
     } else if (w == "--pictures" && args.command == "ballistic") {
       args.run_pictures = true;
+    } else if (w == "--mpi" && (args.command == "sweep" || args.command == "ballistic")) {
+      args.mpi = true;
     } else if (w == "--jobs" && (args.command == "sweep" || args.command == "ballistic")) {
       args.jobs = count_in(value(), 1024);
       if (args.jobs == 0) return fail_usage("--jobs needs a number from 1 to 1024");
@@ -379,6 +398,44 @@ int main(int argc, char** argv) {
   if (args.scenario.empty() && args.restart.empty()) return fail_usage("no scenario file given");
   if (args.command == "sweep" && args.sets.empty()) return fail_usage("krug sweep needs at least one --set");
   if (args.command == "ballistic" && args.velocity.empty()) return fail_usage("krug ballistic needs --velocity MIN,MAX");
+  // The study commands on MPI ranks: with an MPI build when an MPI launcher started this process (or
+  // --mpi); a build without MPI refuses to run N copies of the whole study.
+  std::unique_ptr<krug::app::MpiStudy> mpi;
+  if (args.command == "sweep" || args.command == "ballistic") {
+    const int ranks = krug::app::launched_ranks();
+    if (!krug::app::mpi_built() && (args.mpi || ranks > 1)) {
+      const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+      if (rank == nullptr) rank = std::getenv("PMI_RANK");
+      if (rank == nullptr || std::string(rank) == "0") {
+        if (ranks > 1) {
+          std::fprintf(stderr, "krug: started as one of %d MPI ranks, but %s\n", ranks, krug::app::mpi_build_hint().c_str());
+        } else {
+          std::fprintf(stderr, "krug: --mpi: %s\n", krug::app::mpi_build_hint().c_str());
+        }
+      }
+      return 2;
+    }
+    if (!krug::app::mpi_built() && ranks < 0) {
+      std::fprintf(stderr, "krug: warning: started by an MPI launcher, but %s\n", krug::app::mpi_build_hint().c_str());
+    }
+    if (krug::app::mpi_built() && (args.mpi || ranks != 0)) {
+      try {
+        mpi = std::make_unique<krug::app::MpiStudy>();
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "krug: cannot start MPI: %s\n", error.what());
+        return 3;
+      }
+      if (mpi->rank() != 0) {  // a worker: runs what rank 0 hands out, prints nothing of the study
+        install_signal_handlers();
+        mpi->serve(interrupted, signal_number);
+        return 0;
+      }
+      if (args.command == "sweep" && args.jobs > 0 && !args.quiet) {
+        std::fprintf(stderr, "krug: --jobs %d ignored: on MPI every rank runs one variant at a time (mpirun -np sets how many)\n",
+                     args.jobs);
+      }
+    }
+  }
   try {
     if (args.command == "validate") {
       const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
@@ -398,10 +455,9 @@ int main(int argc, char** argv) {
       krug::app::SweepArguments sweep;
       sweep.scenario = args.scenario;
       sweep.sets = args.sets;
-      sweep.jobs = args.jobs;
       sweep.out = args.out;
       sweep.quiet = args.quiet;
-      return krug::app::run_sweep(sweep, interrupted, signal_number);
+      return krug::app::run_sweep(sweep, workers(args, mpi.get()), interrupted, signal_number);
     }
     if (args.command == "ballistic") {
       install_signal_handlers();
@@ -415,7 +471,7 @@ int main(int argc, char** argv) {
       ballistic.quiet = args.quiet;
       ballistic.pictures = args.run_pictures;
       ballistic.scale_end_time = !args.keep_end_time;
-      return krug::app::run_ballistic(ballistic, interrupted, signal_number);
+      return krug::app::run_ballistic(ballistic, workers(args, mpi.get()), interrupted, signal_number);
     }
     return run(args);
   } catch (const krug::InputError& error) {

@@ -66,6 +66,23 @@ TEST_CASE("usage errors exit with code 2 and say what is wrong", "[app][cli]") {
   CHECK_THAT(threads.output, Catch::Contains("--threads needs a number from 1 to 256"));
 }
 
+TEST_CASE("a krug without MPI started by mpirun, or given --mpi, says how to get the MPI build", "[app][cli]") {
+  if (!krug::test::have_app() || KRUG_APP_HAS_MPI) return;  // the MPI build runs these (tests/app/mpi_study.py)
+  const fs::path dir = krug::test::scratch("cli_mpi");
+  const std::vector<std::string> sweep = {"sweep", example("sod.json").string(), "--set", "controls.cfl=0.5",
+                                          "--out", (dir / "out").string()};
+  const auto ranks = run_krug(sweep, dir / "ranks.log", {"OMPI_COMM_WORLD_SIZE=2", "OMPI_COMM_WORLD_RANK=0"});
+  CHECK(ranks.exit_code == 2);
+  CHECK_THAT(ranks.output, Catch::Contains("one of 2 MPI ranks") && Catch::Contains("built without MPI") &&
+                               Catch::Contains("-DKRUG_MPI=ON") && Catch::Contains("libopenmpi-dev"));
+  CHECK_FALSE(fs::exists(dir / "out" / "sweep.csv"));
+  std::vector<std::string> flagged = sweep;
+  flagged.push_back("--mpi");
+  const auto flag = run_krug(flagged, dir / "flag.log");
+  CHECK(flag.exit_code == 2);
+  CHECK_THAT(flag.output, Catch::Contains("--mpi: this krug was built without MPI"));
+}
+
 TEST_CASE("krug validate accepts every example and refuses broken files with the JSON path", "[app][cli]") {
   if (!krug::test::have_app()) return;
   const fs::path dir = krug::test::scratch("cli_validate");

@@ -209,3 +209,41 @@ TEST_CASE("edit_scenario applies edits by JSON path in memory and keeps the key 
   CHECK_THAT(error_of("a..b"), Catch::Contains("an empty key"));
   CHECK_THROWS_AS(krug::io::edit_scenario("{not json", {}, "test"), krug::InputError);
 }
+
+TEST_CASE("a sweep into a folder with finished variants runs only the others (resume)", "[app][sweep]") {
+  if (!krug::test::have_app()) return;
+  const fs::path dir = krug::test::scratch("sweep_resume");
+  const std::vector<std::string> arguments = {
+      "sweep", (fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json").string(), "--set",
+      "bodies[0].initial.velocity[0]=10,20,30", "--set", "output={\"plots\": false, \"pictures\": {\"enabled\": false}}",
+      "--jobs", "2", "--out", dir.string()};
+  auto without_timing = [](std::vector<std::map<std::string, std::string>> rows) {
+    for (auto& row : rows) row.erase("wall_seconds");
+    return rows;
+  };
+  const auto first = krug::test::run_krug(arguments, dir / "first.log");
+  INFO(first.output);
+  REQUIRE(first.exit_code == 0);
+  const auto table = without_timing(read_table(dir / "sweep.csv"));
+  REQUIRE(table.size() == 3);
+  const fs::path kept = dir / table[1].at("variant");
+  const auto kept_time = fs::last_write_time(kept / "summary.json");
+  // Half-done: one variant's summary gone, another's cut in half (a run killed while writing it), and
+  // nothing must look finished to a scenario that differs.
+  fs::remove(dir / table[0].at("variant") / "summary.json");
+  const fs::path cut = dir / table[2].at("variant") / "summary.json";
+  const std::string text = krug::test::read_text(cut);
+  krug::test::write_text(cut, text.substr(0, text.size() / 2));
+  const auto second = krug::test::run_krug(arguments, dir / "second.log");
+  INFO(second.output);
+  REQUIRE(second.exit_code == 0);
+  CHECK_THAT(second.output, Catch::Contains("1 of them finished in an earlier sweep into this folder (kept); 2 to run"));
+  CHECK(fs::last_write_time(kept / "summary.json") == kept_time);
+  CHECK(without_timing(read_table(dir / "sweep.csv")) == table);
+  // A folder whose run was of another scenario is run again.
+  krug::test::write_text(kept / "scenario.resolved.json", "{}\n");
+  const auto third = krug::test::run_krug(arguments, dir / "third.log");
+  INFO(third.output);
+  CHECK_THAT(third.output, Catch::Contains("2 of them finished in an earlier sweep into this folder (kept); 1 to run"));
+  CHECK(without_timing(read_table(dir / "sweep.csv")) == table);
+}
