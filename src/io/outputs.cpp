@@ -485,7 +485,11 @@ void RunRecorder::observe(const Simulation& simulation) {
     if (gauges_->needs_every_step()) gauges_->accumulate(simulation);
     if (simulation.time() >= next_gauge_time_ * (1.0 - 1e-12) && !simulation.finished()) {
       write_gauge_row(simulation);
-      while (next_gauge_time_ <= simulation.time() * (1.0 + 1e-12)) next_gauge_time_ += gauge_interval_;
+      // The next multiple of the interval after this time (by multiplication: an interval far below the
+      // time step must not take a loop of additions, nor one that 1e-300 leaves where it was).
+      const double t = simulation.time() * (1.0 + 1e-12);
+      next_gauge_time_ = std::max(gauge_interval_ * (std::floor(t / gauge_interval_) + 1.0),
+                                  std::nextafter(t, std::numeric_limits<double>::infinity()));
     }
   }
   if (simulation.time() >= next_history_time_ * (1.0 - 1e-12)) {

@@ -543,7 +543,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
     scenario.stop = read_stop_rule(*stop, named_bodies, scenario.penetration);
   }
   if (auto gauges = top.optional_object("gauges")) {
-    scenario.gauges = read_gauges(*gauges, named_bodies, end_time, geometry);
+    scenario.gauges = read_gauges(*gauges, named_bodies, geometry);
   }
   top.finish();
   scenario.resolved_json = resolved.dump(2);
