@@ -174,6 +174,10 @@ nlohmann::json spall_document(double h) {
   d["bodies"][0]["mesh"]["y"]["to"] = h;
   d["bodies"][1]["mesh"]["y"]["to"] = h;
   d.erase("output");
+  // The gauges stay on the strip's mid-line (the example's are at half its 0.05 mm height).
+  for (const char* kind : {"tracers", "surfaces"}) {
+    for (auto& gauge : d["gauges"][kind]) gauge["position"][1] = 0.5 * h;
+  }
   return d;
 }
 
