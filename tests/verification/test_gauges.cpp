@@ -5,6 +5,7 @@
 //   * the Sod tube (examples/verification/sod.json): tracers on either side of the membrane, against
 //     the exact Riemann solution (tests/data/exact/sod_t0.25.csv) at their Eulerian position and t = 0.25,
 //     and their position against the exact Lagrangian one (the same mass between tracer and contact).
+//   * a Johnson-Cook block: the tracer's temperature column is the model's T of its zone.
 // The spall trace (free-surface gauge) is checked in test_fracture_spall.cpp.
 #include <catch2/catch.hpp>
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -142,4 +144,31 @@ TEST_CASE("Sod: tracers against the exact solution at their Lagrangian position"
     report("Sod tracer " + n, "position at t = 0.25", format_number("%.5f (Lagrangian)", tracer.expected_position), x,
            format_number("%.2f zones", std::abs(x - tracer.expected_position) / zone), 800, run.seconds);
   }
+}
+
+// The temperature column exists only with a Johnson-Cook material, and is its T = T_room + max(e, 0)/c_v
+// (material/strength.hpp) of the tracer's zone: the library's OFHC copper (c_v 383 J/(kg K)) at
+// e = 3830 J/kg, at t = 0 and after a few cycles (a block at rest: e stays put to round-off).
+TEST_CASE("tracer temperature: Johnson-Cook's T of the zone", "[gauges]") {
+  const std::string text = R"({
+    "geometry": "planar", "end_time": 1e-6,
+    "materials": { "cu": "ofhc-copper" },
+    "bodies": [ { "name": "block", "material": "cu",
+                  "mesh": { "type": "rectangle", "x": { "from": 0, "to": 0.01, "zones": 4 },
+                                                 "y": { "from": 0, "to": 0.01, "zones": 4 } },
+                  "initial": { "specific_internal_energy": 3830.0 } } ],
+    "gauges": { "interval": 1e-7, "tracers": [ { "name": "t", "position": [0.004, 0.006],
+                                                 "quantities": ["temperature", "specific_energy"] } ] } })";
+  const io::Scenario scenario = io::parse_scenario(text, "copper block");
+  Run run(scenario.setup);
+  GaugeSampler gauges(scenario.gauges, run.simulation);
+  REQUIRE(gauges.columns() == std::vector<std::string>{"t_temperature", "t_specific_energy"});
+  const auto& jc = std::get<JohnsonCook>(run.simulation.materials().front().strength);
+  std::vector<double> values;
+  gauges.sample(run.simulation, values);
+  CHECK(values[0] == Approx(jc.room_temperature + 3830.0 / jc.specific_heat).epsilon(1e-12));
+  CHECK(jc.specific_heat == 383.0);  // the library's OFHC copper (JC83)
+  for (int k = 0; k < 5; ++k) run.simulation.step();
+  gauges.sample(run.simulation, values);
+  CHECK(values[0] == Approx(jc.room_temperature + std::max(values[1], 0.0) / jc.specific_heat).epsilon(1e-12));
 }
