@@ -11,6 +11,7 @@
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/quad.hpp"
 #include "krug/solver/controls.hpp"
+#include "krug/solver/gauges.hpp"
 #include "krug/solver/ledger.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"

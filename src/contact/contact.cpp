@@ -94,7 +94,8 @@ void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, doub
 // --- candidates ---------------------------------------------------------------------------------
 
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
-                                                double friction, double weight, bool self, double dt_next) {
+                                                double friction, double weight, bool self, double dt_next,
+                                                Index pair) {
   boxes_.clear();
   for (const BoundarySegment& s : masters.segments) {
     Box box;
@@ -140,6 +141,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
       candidate.kind = Kind::node_segment;
       candidate.friction = friction;
       candidate.weight = weight;
+      candidate.pair = pair;
       candidate.start_gap = std::min(start.gap, 0.0);
       candidate.length = length;
       found.push_back({candidate, start.gap, over});
@@ -246,14 +248,16 @@ void ContactSolver::add_particle_candidates(double dt_next) {
 void ContactSolver::find_candidates(double dt_next) {
   candidates_.clear();
   const bool summation = setup_.controls.method == ReactionMethod::summation;
-  for (const BodyPair& pair : setup_.pairs) {
+  for (std::size_t k = 0; k < setup_.pairs.size(); ++k) {
+    const BodyPair& pair = setup_.pairs[k];
+    const Index index = static_cast<Index>(k);
     const BodyBoundary& first = boundaries_[static_cast<std::size_t>(pair.first)];
     const BodyBoundary& second = boundaries_[static_cast<std::size_t>(pair.second)];
     if (pair.first == pair.second) {
-      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next);
+      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next, index);
     } else {
-      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
-      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next);
+      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index);
+      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index);
     }
   }
   for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
@@ -420,7 +424,8 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
 
   if (setup_.controls.method == ReactionMethod::summation) {
     // The paper's: every reaction from the same predicted state, then all applied together.
-    std::vector<Geometry> geometry;
+    std::vector<Geometry>& geometry = summation_geometry_;
+    geometry.clear();
     geometry.reserve(candidates_.size());
     for (Candidate& c : candidates_) {
       const Geometry g = contact_geometry(c, dt_next);
@@ -504,6 +509,27 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     stats.deepest_gap = std::min(stats.deepest_gap, g.gap - std::min(g.start_gap, 0.0));
   }
   return stats;
+}
+
+void ContactSolver::source_forces(const Mesh& mesh, SourceForces& out) const {
+  out.pairs.assign(setup_.pairs.size(), Vec2{});
+  out.walls.assign(setup_.walls.size(), Vec2{});
+  const bool summation = setup_.controls.method == ReactionMethod::summation;
+  for (std::size_t k = 0; k < candidates_.size(); ++k) {
+    const Candidate& c = candidates_[k];
+    if (c.kind == Kind::wall) {
+      if (c.wall < 0) continue;  // the axis wall of particles
+      const Vec2 n = setup_.walls[static_cast<std::size_t>(c.wall)].normal;
+      out.walls[static_cast<std::size_t>(c.wall)] += c.normal * n + c.tangent * Vec2{-n.y, n.x};
+    } else if (c.kind == Kind::node_segment && c.pair >= 0) {
+      const BodyPair& pair = setup_.pairs[static_cast<std::size_t>(c.pair)];
+      if (pair.first == pair.second) continue;
+      const Vec2 n = summation ? summation_geometry_[k].normal : c.applied_normal;
+      const Vec2 force = c.normal * n + c.tangent * Vec2{-n.y, n.x};  // on the node; its segment takes -force
+      const bool on_first = mesh.nodes.body[c.node.index] == pair.first;
+      out.pairs[static_cast<std::size_t>(c.pair)] += on_first ? force : -1.0 * force;
+    }
+  }
 }
 
 }  // namespace krug::contact

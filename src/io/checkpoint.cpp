@@ -205,6 +205,9 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(steps.smallest_body);
   w.value(steps.smallest_zone);
   w.value(steps.smallest_limit);
+  w.value(progress.next_gauge_time);
+  w.value(progress.gauge_bytes);
+  w.vector(progress.gauge_impulses);
   w.value(fnv1a(w.bytes()));
   w.raw(end_magic, sizeof end_magic);
   write_text_atomically(file, w.bytes());
@@ -303,6 +306,9 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   steps.smallest_body = r.value<std::int32_t>();
   steps.smallest_zone = r.value<std::int32_t>();
   steps.smallest_limit = r.value<std::int32_t>();
+  p.next_gauge_time = r.value<double>();
+  p.gauge_bytes = r.value<std::uint64_t>();
+  r.vector(p.gauge_impulses);
   if (r.position() != body_end) r.corrupt("unexpected bytes after the last field");
   // Consistency of what was read (a checkpoint that passed its checksum but was written wrongly, or
   // resealed after an edit): every field of the registry has its entries per node or zone, every

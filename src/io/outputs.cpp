@@ -262,6 +262,16 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
   next_history_time_ = settings_.history_interval;
   next_snapshot_time_ = settings_.snapshot_interval > 0.0 ? settings_.snapshot_interval
                                                           : std::numeric_limits<double>::infinity();
+  if (!scenario.gauges.empty()) {
+    gauges_.emplace(scenario.gauges, simulation);
+    gauge_interval_ = scenario.gauges.interval;
+    gauge_file_.open(directory_ / "gauges.csv", false);
+    const std::string header = gauge_header();
+    gauge_file_.append(header);
+    gauge_bytes_ = header.size();
+    write_gauge_row(simulation);
+    next_gauge_time_ = gauge_interval_;
+  }
 }
 
 RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
@@ -301,6 +311,28 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
   time_steps_ = resume.time_steps;
   next_history_time_ = resume.next_history_time;
   next_snapshot_time_ = resume.next_snapshot_time;
+  if (!scenario.gauges.empty()) {
+    // As history.csv: cut back to (or copied up to) its length at the checkpoint; the impulses go on.
+    gauges_.emplace(scenario.gauges, simulation);
+    gauge_interval_ = scenario.gauges.interval;
+    const std::filesystem::path file = directory_ / "gauges.csv";
+    const std::string header = gauge_header();
+    const bool carried = resume.gauge_bytes >= header.size();  // the checkpoint's run wrote gauges
+    if (carried) gauges_->restore_impulses(resume.gauge_impulses);
+    if (carried && !same) {
+      std::ifstream in(previous_directory / "gauges.csv", std::ios::binary);
+      std::string rows(static_cast<std::size_t>(resume.gauge_bytes), '\0');
+      if (!in || !in.read(rows.data(), static_cast<std::streamsize>(rows.size()))) rows = header;
+      write_text_atomically(file, rows);
+    } else if (carried && std::filesystem::exists(file) && std::filesystem::file_size(file) >= resume.gauge_bytes) {
+      std::filesystem::resize_file(file, resume.gauge_bytes);  // rows written after the checkpoint
+    } else {
+      write_text_atomically(file, header);  // a checkpoint taken without gauges: they start here
+    }
+    gauge_bytes_ = std::filesystem::file_size(file);
+    gauge_file_.open(file, true);
+    next_gauge_time_ = carried ? resume.next_gauge_time : simulation.time();
+  }
 }
 
 void RunRecorder::open(const Scenario& scenario, bool fresh) {
@@ -332,7 +364,7 @@ void RunRecorder::open(const Scenario& scenario, bool fresh) {
     remove_matching(directory_ / "snapshots", {"state_", "particles_"}, {".vtu", ".vtp"});
     remove_matching(directory_ / "pictures", {""}, {".png"});
     remove_matching(directory_ / "plots", {""}, {".png"});
-    for (const char* name : {"summary.json", "final.vtu", "final_particles.vtp", "run.pvd", "checkpoint.bin"}) {
+    for (const char* name : {"summary.json", "final.vtu", "final_particles.vtp", "run.pvd", "checkpoint.bin", "gauges.csv"}) {
       std::filesystem::remove(directory_ / name, error);
     }
   }
@@ -348,7 +380,28 @@ RunProgress RunRecorder::progress() {
   p.particle_snapshots = particle_snapshots_;
   p.history_bytes = history_bytes_;
   p.time_steps = time_steps_;
+  if (gauges_) {
+    gauge_file_.flush();
+    p.next_gauge_time = next_gauge_time_;
+    p.gauge_bytes = gauge_bytes_;
+    p.gauge_impulses = gauges_->impulses();
+  }
   return p;
+}
+
+std::string RunRecorder::gauge_header() const {
+  std::string header = "time,cycle";
+  for (const std::string& column : gauges_->columns()) header += "," + column;
+  return header + "\n";
+}
+
+void RunRecorder::write_gauge_row(const Simulation& simulation) {
+  gauges_->sample(simulation, gauge_values_);
+  std::string row = fmt::format("{:.12e},{}", simulation.time(), simulation.cycle());
+  for (const double v : gauge_values_) row += fmt::format(",{:.12e}", v);
+  row += '\n';
+  gauge_file_.append(row);
+  gauge_bytes_ += row.size();
 }
 
 std::string RunRecorder::history_header(const Simulation& simulation) {
@@ -428,6 +481,17 @@ void RunRecorder::count_time_step(const Simulation& simulation) {
 
 void RunRecorder::observe(const Simulation& simulation) {
   count_time_step(simulation);
+  if (gauges_) {
+    if (gauges_->needs_every_step()) gauges_->accumulate(simulation);
+    if (simulation.time() >= next_gauge_time_ * (1.0 - 1e-12) && !simulation.finished()) {
+      write_gauge_row(simulation);
+      // The next multiple of the interval after this time (by multiplication: an interval far below the
+      // time step must not take a loop of additions, nor one that 1e-300 leaves where it was).
+      const double t = simulation.time() * (1.0 + 1e-12);
+      next_gauge_time_ = std::max(gauge_interval_ * (std::floor(t / gauge_interval_) + 1.0),
+                                  std::nextafter(t, std::numeric_limits<double>::infinity()));
+    }
+  }
   if (simulation.time() >= next_history_time_ * (1.0 - 1e-12)) {
     write_history_row(simulation);
     if (settings_.history_interval > 0.0) {
@@ -446,6 +510,10 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   if (snapshots_.empty() || snapshots_.back().first < simulation.time()) write_snapshot(simulation);
   write_history_row(simulation);
   history_.flush();
+  if (gauges_) {
+    write_gauge_row(simulation);  // the last state, whatever the interval
+    gauge_file_.flush();
+  }
   write_vtu(simulation, directory_ / "final.vtu", settings_.vtk_format);
   if (simulation.fracture_enabled()) write_vtp(simulation, directory_ / "final_particles.vtp", settings_.vtk_format);
   std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";

@@ -37,6 +37,8 @@ using detail::read_mesh;
 using detail::read_output;
 using detail::read_penetration;
 using detail::read_stop_rule;
+using detail::read_gauges;
+using detail::check_gauges;
 
 // The constant of key `key` of a strength model (its parameter list), if the model has one.
 std::optional<double> strength_constant(const Strength& strength, std::string_view key) {
@@ -586,9 +588,13 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
   } else if (auto stop = top.optional_object("stop")) {
     scenario.stop = read_stop_rule(*stop, named_bodies, scenario.penetration);
   }
+  if (auto gauges = top.optional_object("gauges")) {
+    scenario.gauges = read_gauges(*gauges, named_bodies, geometry);
+  }
   top.finish();
   scenario.resolved_json = resolved.dump(2);
   scenario.setup = setup::build_simulation(scenario.scene);
+  check_gauges(scenario.gauges, scenario.setup);
   if (!allow.allows("velocity")) {
     // Speeds of impact problems reach tens of km/s (meteoroids); 1e5 m/s is a slip (km/s for m/s).
     const Mesh& mesh = scenario.setup.mesh;

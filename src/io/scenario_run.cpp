@@ -153,4 +153,126 @@ PenetrationSetup read_penetration(JsonObject spec, const std::vector<Body>& bodi
   return p;
 }
 
+namespace {
+
+// A gauge's name becomes the prefix of its CSV columns: letters, digits, '_' and '-' only.
+std::string gauge_name(JsonObject& spec, std::vector<std::string>& taken) {
+  const std::string name = spec.text("name");
+  const bool valid = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+  if (!valid) spec.fail("name", "a non-empty name of letters, digits, '_' and '-' (it prefixes the gauge's CSV columns)");
+  if (std::find(taken.begin(), taken.end(), name) != taken.end()) spec.fail("name", "a name no other gauge has");
+  taken.push_back(name);
+  return name;
+}
+
+Vec2 gauge_vector(JsonObject& spec, std::string_view key, GeometryKind geometry) {
+  const Json& v = spec.raw(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() || !std::isfinite(v[0].get<double>()) ||
+      !std::isfinite(v[1].get<double>())) {
+    spec.fail(key, fmt::format("an array [{}, {}] of two finite numbers", axis_name(geometry, 0), axis_name(geometry, 1)));
+  }
+  spec.resolve(key, v);
+  return {v[0].get<double>(), v[1].get<double>()};
+}
+
+}  // namespace
+
+GaugeSettings read_gauges(JsonObject spec, const std::vector<Body>& bodies, GeometryKind geometry) {
+  GaugeSettings g;
+  // An interval below the time step gives a row every cycle (at most controls.max_cycles rows).
+  g.interval = spec.number("interval", Range::positive());
+  std::vector<std::string> names;
+  if (const Json* tracers = spec.optional_raw("tracers")) {
+    if (!tracers->is_array()) spec.fail("tracers", "an array of {name, position, quantities}");
+    Json resolved_list = Json::array();
+    for (std::size_t i = 0; i < tracers->size(); ++i) {
+      Json resolved = Json::object();
+      JsonObject t((*tracers)[i], fmt::format("{}[{}]", spec.path_of("tracers"), i), &resolved);
+      TracerGauge tracer;
+      tracer.name = gauge_name(t, names);
+      tracer.position = gauge_vector(t, "position", geometry);
+      if (const Json* quantities = t.optional_raw("quantities")) {
+        const std::vector<std::string>& known = tracer_quantity_names();
+        if (!quantities->is_array() || quantities->empty()) t.fail("quantities", "a non-empty array of quantity names");
+        for (std::size_t k = 0; k < quantities->size(); ++k) {
+          const std::string path = fmt::format("{}[{}]", t.path_of("quantities"), k);
+          const Json& q = (*quantities)[k];
+          const auto found = q.is_string() ? std::find(known.begin(), known.end(), q.get<std::string>()) : known.end();
+          if (found == known.end()) {
+            std::string list;
+            for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
+            const auto guess = q.is_string() ? nearest(q.get<std::string>(), known) : std::nullopt;
+            throw InputError(fmt::format("{}: unknown quantity {}; tracers report: {}{}", path, describe_value(q), list,
+                                         guess ? fmt::format(" (did you mean \"{}\"?)", *guess) : ""));
+          }
+          const auto quantity = static_cast<TracerQuantity>(found - known.begin());
+          if (std::find(tracer.quantities.begin(), tracer.quantities.end(), quantity) != tracer.quantities.end()) {
+            throw InputError(fmt::format("{}: \"{}\" is listed twice", path, *found));
+          }
+          tracer.quantities.push_back(quantity);
+        }
+        t.resolve("quantities", *quantities);
+      }
+      t.finish();
+      g.tracers.push_back(tracer);
+      resolved_list.push_back(resolved);
+    }
+    spec.resolve("tracers", resolved_list);
+  } else {
+    spec.resolve("tracers", Json::array());
+  }
+  if (const Json* surfaces = spec.optional_raw("surfaces")) {
+    if (!surfaces->is_array()) spec.fail("surfaces", "an array of {name, body, position, direction}");
+    Json resolved_list = Json::array();
+    for (std::size_t i = 0; i < surfaces->size(); ++i) {
+      Json resolved = Json::object();
+      JsonObject s((*surfaces)[i], fmt::format("{}[{}]", spec.path_of("surfaces"), i), &resolved);
+      SurfaceGauge surface;
+      surface.name = gauge_name(s, names);
+      const Json& body = s.raw("body");
+      surface.body = body_index(s, "body", body, bodies, s.path_of("body"));
+      s.resolve("body", body);
+      surface.position = gauge_vector(s, "position", geometry);
+      if (s.has("direction")) {
+        const Vec2 d = gauge_vector(s, "direction", geometry);
+        if (!(norm(d) > 0.0)) s.fail("direction", "a non-zero vector (the velocity is taken along it)");
+        surface.direction = (1.0 / norm(d)) * d;
+      } else {
+        s.optional_raw("direction");  // named among the valid keys
+      }
+      s.finish();
+      g.surfaces.push_back(surface);
+      resolved_list.push_back(resolved);
+    }
+    spec.resolve("surfaces", resolved_list);
+  } else {
+    spec.resolve("surfaces", Json::array());
+  }
+  g.forces = spec.flag("forces", false);
+  spec.finish();
+  if (g.empty()) spec.fail_here("expected at least one gauge: tracers, surfaces or \"forces\": true");
+  return g;
+}
+
+void check_gauges(const GaugeSettings& gauges, const SimulationSetup& setup) {
+  const bool temperature = std::any_of(setup.materials.begin(), setup.materials.end(),
+                                       [](const Material& m) { return std::holds_alternative<JohnsonCook>(m.strength); });
+  for (std::size_t i = 0; i < gauges.tracers.size(); ++i) {
+    const TracerGauge& t = gauges.tracers[i];
+    if (!locate_tracer(setup.mesh, t.position, true)) {
+      throw InputError(fmt::format("gauges.tracers[{}].position: ({:.6g}, {:.6g}) lies in no zone of any body at t = 0; "
+                                   "a tracer follows the material point it starts on",
+                                   i, t.position.x, t.position.y));
+    }
+    for (std::size_t k = 0; k < t.quantities.size(); ++k) {
+      if (t.quantities[k] == TracerQuantity::temperature && !temperature) {
+        throw InputError(fmt::format("gauges.tracers[{}].quantities[{}]: \"temperature\": no material of this scenario "
+                                     "carries a temperature (only the johnson_cook strength model does)", i, k));
+      }
+    }
+  }
+}
+
 }  // namespace krug::io::detail

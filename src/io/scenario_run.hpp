@@ -24,5 +24,11 @@ OutputSettings read_output(JsonObject output, double end_time, GeometryKind geom
 StopRule read_stop_rule(JsonObject spec, const std::vector<Body>& bodies, const std::optional<PenetrationSetup>& penetration);
 // {"projectile": name, "targets": [names]}; the targets default to every other body.
 PenetrationSetup read_penetration(JsonObject spec, const std::vector<Body>& bodies);
+// The gauges block (docs/scenario-format.md, "Gauges"); where the gauges lie is checked once the mesh is
+// built (check_gauges).
+GaugeSettings read_gauges(JsonObject spec, const std::vector<Body>& bodies, GeometryKind geometry);
+// Each tracer inside a zone of the built initial mesh, a temperature asked only where a material has
+// one; errors name gauges.tracers[i].
+void check_gauges(const GaugeSettings& gauges, const SimulationSetup& setup);
 
 }  // namespace krug::io::detail

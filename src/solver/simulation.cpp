@@ -213,6 +213,7 @@ void Simulation::step() {
   // A failure part-way through the step would leave the ledger holding some of this step's work and
   // none of its energies; it goes back to the last completed cycle's, which closes.
   const Ledger at_start = state_.ledger;
+  last_step_mid_ = 0.5 * (state_.time_step_previous + state_.time_step_next);
   try {
     compute_forces();
     predict_velocities();

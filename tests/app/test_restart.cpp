@@ -193,3 +193,43 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
   CHECK(extended.warnings.size() == 1);
   CHECK(krug::test::read_json(extended_dir / "summary.json")["time"].get<double>() == Approx(5e-6).epsilon(1e-12));
 }
+
+// Gauges through a checkpoint: gauges.csv of a run interrupted while the slabs are in contact and
+// restarted (into the same directory, and from a periodic checkpoint into another one) is the file of
+// the run that never stopped, byte for byte: the rows written after the checkpoint are cut, and the
+// force gauges' impulses carried by the checkpoint go on.
+TEST_CASE("gauges.csv survives a checkpoint and a restart byte for byte", "[app][restart][gauges]") {
+  const fs::path file = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
+  const auto add_gauges = [](Json& d) {
+    d["gauges"] = Json::parse(R"({"interval": 1e-7,
+      "tracers": [ { "name": "mid", "position": [0.005, 1e-4] } ],
+      "surfaces": [ { "name": "rear", "body": "target", "position": [0.01, 0.0] } ],
+      "forces": true })");
+  };
+  const auto scenario = scenario_with(file, add_gauges);
+  const auto periodic = scenario_with(file, [&](Json& d) {
+    add_gauges(d);
+    d["output"]["checkpoint_interval"] = 1.5e-6;
+  });
+  const fs::path reference = krug::test::scratch("gauges_reference");
+  const fs::path stopped = krug::test::scratch("gauges_interrupted");
+  const fs::path checkpoints = krug::test::scratch("gauges_periodic");
+  const fs::path elsewhere = krug::test::scratch("gauges_elsewhere");
+  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  const std::string expected = read_text(reference / "gauges.csv");
+  // Header, the first state, 40 rows at 1e-7 s over 4 us, the last state.
+  CHECK(expected.rfind("time,cycle,mid_x,mid_y,mid_vx,mid_vy,mid_pressure,", 0) == 0);
+  CHECK(std::count(expected.begin(), expected.end(), '\n') >= 42);
+  CHECK(expected.find("pair_flyer_target_Fx,pair_flyer_target_Fy,pair_flyer_target_Ix") != std::string::npos);
+  CHECK(expected.find("held_target_Fx") != std::string::npos);
+
+  interrupted_run(scenario, stopped, 1.2e-6);
+  REQUIRE(fs::exists(stopped / "checkpoint.bin"));
+  REQUIRE(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  CHECK(read_text(stopped / "gauges.csv") == expected);
+
+  REQUIRE(krug::run::run_scenario(periodic, to(checkpoints)).status == RunStatus::completed);
+  CHECK(read_text(checkpoints / "gauges.csv") == expected);
+  REQUIRE(krug::run::restart_scenario(checkpoints / "checkpoint.bin", to(elsewhere)).status == RunStatus::completed);
+  CHECK(read_text(elsewhere / "gauges.csv") == expected);
+}

@@ -442,3 +442,54 @@ TEST_CASE("boundary loads and functions of time: bad input names the JSON path",
     CHECK_THAT(e, Catch::Contains("held by a slip condition and also given a pressure load"));
   }
 }
+
+TEST_CASE("gauge errors name the JSON path", "[scenario][gauges]") {
+  const std::string base = valid_scenario();
+  const auto with_gauges = [&](const std::string& gauges) {
+    return replaced(base, "\"end_time\": 0.1,", "\"end_time\": 0.1, \"gauges\": " + gauges + ",");
+  };
+  SECTION("a valid block parses") {
+    const auto scenario = parse_scenario(
+        with_gauges(R"({"interval": 0.01, "tracers": [{"name": "a", "position": [0.5, 0.5]}],
+                        "surfaces": [{"name": "s", "body": "box", "position": [1.0, 0.5]}], "forces": true})"),
+        "test.json");
+    CHECK(scenario.gauges.tracers.size() == 1);
+    CHECK(scenario.gauges.surfaces.size() == 1);
+    CHECK(scenario.gauges.forces);
+  }
+  SECTION("a tracer outside every body") {
+    const auto e = error_of(with_gauges(R"({"interval": 0.01, "tracers": [{"name": "a", "position": [2.0, 0.5]}]})"));
+    CHECK(e.find("gauges.tracers[0].position") != std::string::npos);
+    CHECK(e.find("no zone") != std::string::npos);
+  }
+  SECTION("an unknown quantity") {
+    const auto e = error_of(with_gauges(
+        R"({"interval": 0.01, "tracers": [{"name": "a", "position": [0.5, 0.5], "quantities": ["presure"]}]})"));
+    CHECK(e.find("gauges.tracers[0].quantities[0]") != std::string::npos);
+    CHECK(e.find("did you mean \"pressure\"") != std::string::npos);
+  }
+  SECTION("a temperature where no material has one") {
+    const auto e = error_of(with_gauges(
+        R"({"interval": 0.01, "tracers": [{"name": "a", "position": [0.5, 0.5], "quantities": ["temperature"]}]})"));
+    CHECK(e.find("gauges.tracers[0].quantities[0]") != std::string::npos);
+    CHECK(e.find("johnson_cook") != std::string::npos);
+  }
+  SECTION("a non-positive interval") {
+    for (const char* interval : {"0", "-1e-3"}) {
+      const auto e = error_of(with_gauges(fmt::format(R"({{"interval": {}, "forces": true}})", interval)));
+      CHECK(e.find("gauges.interval") != std::string::npos);
+    }
+  }
+  SECTION("a surface gauge on an unknown body, a zero direction, a repeated name, no gauge at all") {
+    CHECK(error_of(with_gauges(R"({"interval": 0.01, "surfaces": [{"name": "s", "body": "bx", "position": [1, 0]}]})"))
+              .find("gauges.surfaces[0].body") != std::string::npos);
+    CHECK(error_of(with_gauges(
+                       R"({"interval": 0.01, "surfaces": [{"name": "s", "body": "box", "position": [1, 0], "direction": [0, 0]}]})"))
+              .find("gauges.surfaces[0].direction") != std::string::npos);
+    CHECK(error_of(with_gauges(R"({"interval": 0.01, "tracers": [{"name": "a", "position": [0.5, 0.5]},
+                                                                  {"name": "a", "position": [0.2, 0.5]}]})"))
+              .find("gauges.tracers[1].name") != std::string::npos);
+    CHECK(error_of(with_gauges(R"({"interval": 0.01})")).find("gauges") != std::string::npos);
+    CHECK(error_of(with_gauges(R"({"interval": 0.01, "force": true})")).find("did you mean \"forces\"") != std::string::npos);
+  }
+}

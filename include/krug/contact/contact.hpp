@@ -98,11 +98,23 @@ class ContactSolver {
   Vec2 overlap_reaction_force(ContactPoint point) const;
   const ContactSetup& setup() const { return setup_; }
 
+  // The reactions of the last solve by where they came from (for gauges; nothing in the step computes
+  // them): `pairs[k]` the force pair k's node-on-segment contacts applied to its first body (zero for a
+  // self-contact pair), `walls[w]` the force wall w applied to the nodes and particles it touched
+  // (N per radian or per m). Each contact's reaction is its accumulated total along the direction it
+  // was applied in, so the sums equal those of reaction_force() to round-off. Contacts of particles
+  // with body segments or with each other belong to no pair.
+  struct SourceForces {
+    std::vector<Vec2> pairs, walls;
+  };
+  void source_forces(const Mesh& mesh, SourceForces& out) const;
+
  private:
   enum class Kind : std::uint8_t { node_segment, particle_segment, particle_particle, wall };
   struct Candidate {
     ContactPoint node, a, b;  // the point; the segment's end nodes, or the other particle in a; none where absent
     Index wall = -1;       // wall index (Kind::wall; -2 is the axis)
+    Index pair = -1;       // setup_.pairs index of a node-segment candidate
     Kind kind = Kind::node_segment;
     double friction = 0.0;
     double weight = 1.0;   // 1/2 for two-way pairs in the summation method
@@ -132,7 +144,7 @@ class ContactSolver {
   };
   void find_candidates(double dt_next);
   void add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters, double friction,
-                                   double weight, bool self, double dt_next);
+                                   double weight, bool self, double dt_next, Index pair);
   void add_particle_candidates(double dt_next);
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
   // Coulomb: the tangential reaction that stops the slip at xi, from `accumulated`, within f x
@@ -181,6 +193,7 @@ class ContactSolver {
   std::vector<std::pair<Index, Index>> zone_ranges_;
   std::vector<BodyBoundary> boundaries_;
   std::vector<Candidate> candidates_;
+  std::vector<Geometry> summation_geometry_;  // the summation method's geometry of each candidate, as applied
   std::vector<Index> working_;  // candidates the later Gauss-Seidel sweeps visit
   std::vector<Box> boxes_;
   UniformGrid grid_;

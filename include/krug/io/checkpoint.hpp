@@ -3,7 +3,7 @@
 // progress (output schedule, snapshot list, length of history.csv, stop-rule window, wall time),
 // so that `krug run --restart` continues the run as if it had never stopped.
 //
-// Format (version 2), little-endian, native doubles:
+// Format (version 4), little-endian, native doubles:
 //   "KRUGCKPT"  u32 version  u32 0x01020304 (byte order)  u32 sizeof(double)  u32 sizeof(Index)
 //   u64 FNV-1a hash of the resolved scenario text the run started from
 //   the state and progress, field by field: a vector is a u64 count and its raw elements,
@@ -25,7 +25,7 @@
 
 namespace krug::io {
 
-inline constexpr std::uint32_t checkpoint_version = 4;
+inline constexpr std::uint32_t checkpoint_version = 5;
 
 // The stop rule's window as it stands (krug/run/stop_rule.hpp, StopMonitor): what a checkpoint keeps
 // of it. Each component's window extremes are kept as (time, value) samples in monotonic queues.
@@ -64,6 +64,11 @@ struct RunProgress {
   bool has_penetration = false;
   PenetrationRecord penetration;
   TimeStepRecord time_steps;
+  // Gauges (scenario key "gauges"; zero and empty without): the next row's time, the length of
+  // gauges.csv, and the impulse of each force gauge so far (per radian or per m, two per channel).
+  double next_gauge_time = 0.0;
+  std::uint64_t gauge_bytes = 0;
+  std::vector<double> gauge_impulses;
 };
 
 struct Checkpoint {

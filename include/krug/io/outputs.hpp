@@ -102,6 +102,9 @@ class RunRecorder {
   void count_time_step(const Simulation& simulation);
   void write_snapshot(const Simulation& simulation);
   void picture(const Simulation& simulation, const std::string& name);
+  // gauges.csv (scenario key "gauges"): the header, and a row of the current state.
+  std::string gauge_header() const;
+  void write_gauge_row(const Simulation& simulation);
 
   std::filesystem::path directory_;
   OutputSettings settings_;
@@ -114,6 +117,13 @@ class RunRecorder {
   std::vector<std::pair<double, std::string>> particle_snapshots_;
   TimeStepRecord time_steps_;
   PictureHook picture_;
+  // Gauges: none (no work at all) without a "gauges" block.
+  std::optional<GaugeSampler> gauges_;
+  double gauge_interval_ = 0.0;
+  LineFile gauge_file_;
+  std::uint64_t gauge_bytes_ = 0;
+  double next_gauge_time_ = 0.0;
+  std::vector<double> gauge_values_;  // scratch row
 };
 
 }  // namespace krug::io

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "krug/setup/scene.hpp"
+#include "krug/solver/gauges.hpp"
 #include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
@@ -74,6 +75,7 @@ struct Scenario {
   OutputSettings output;
   std::optional<StopRule> stop;
   std::optional<PenetrationSetup> penetration;  // scenario key "penetration": which body is the projectile
+  GaugeSettings gauges;           // scenario key "gauges" (empty: none; gauges.csv is not written)
   std::string resolved_json;  // the scenario as read, every default filled in
 };
 

@@ -130,6 +130,11 @@ class Simulation {
   // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
   double stable_time_step() const { return state_.stable_time_step; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
+  // For gauges: the held velocity components, the contact solver (its last solve's reactions) and the
+  // step dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 of the last cycle, over which F^n and R acted (s).
+  const std::vector<NodeConstraint>& constraints() const { return constraints_; }
+  const contact::ContactSolver& contact() const { return contact_; }
+  double last_step_mid() const { return last_step_mid_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
   double deepest_contact_gap() const { return state_.deepest_contact_gap; }
 
@@ -205,6 +210,7 @@ class Simulation {
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
 
   TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
+  double last_step_mid_ = 0.0;  // dt^n of the last step (last_step_mid)
 };
 
 }  // namespace krug
