@@ -132,7 +132,7 @@ class Simulation {
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
   // For gauges: the held velocity components, the contact solver (its last solve's reactions) and the
   // step dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 of the last cycle, over which F^n and R acted (s).
-  const std::vector<NodeConstraint>& constraints() const { return constraints_; }
+  const std::vector<NodeConstraint>& constraints() const { return boundary_.constraints(); }
   const contact::ContactSolver& contact() const { return contact_; }
   double last_step_mid() const { return last_step_mid_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
