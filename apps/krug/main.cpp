@@ -114,7 +114,7 @@ int list_materials(const std::vector<std::string>& names) {
                 std::string(c.source).c_str());
   }
   if (library::find_constant(*set, "damage", "d1")) {
-    std::printf("The damage constants (Johnson-Cook D1..D5) are carried by the library; no failure law reads them yet.\n");
+    std::printf("The damage constants (Johnson-Cook D1..D5) are those the Johnson-Cook failure law takes: \"fracture\": {\"model\": \"johnson_cook\"} in a material based on this set.\n");
   }
   return 0;
 }

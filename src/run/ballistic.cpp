@@ -111,7 +111,11 @@ BallisticOutcome outcome_from_summary(const std::string& summary_json, double ve
     o.result = ImpactResult::unfinished;
     if (o.message.empty()) o.message = "ended by " + o.stopped_by + " without a final answer";
   } else {
-    o.result = perforated ? ImpactResult::perforated : ImpactResult::stopped;
+    // A perforation for the ballistic limit: the largest piece has passed the targets and still
+    // flies on. A piece whose nose is through but that moves backwards (caught in the hole, or
+    // rebounding from it) has been stopped: counting it as a perforation put the limit at the speed
+    // where the nose first gets through, below the speed at which anything flies out.
+    o.result = perforated && o.residual_velocity > 0.0 ? ImpactResult::perforated : ImpactResult::stopped;
   }
   return o;
 }
