@@ -67,7 +67,7 @@ int run_ballistic(const BallisticArguments& arguments, const Workers& workers, c
   const run::BallisticProjectile projectile = run::ballistic_projectile(text, scenario.string());
   for (double v : {options.v_min, options.v_max}) {
     try {
-      (void)io::parse_scenario(run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string()),
+      (void)io::parse_scenario(run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string(), arguments.end_time_factor),
                                scenario.string());
     } catch (const InputError& e) {
       throw InputError(fmt::format("the variant at {} m/s is not a valid scenario: {}", v, e.what()));
@@ -100,7 +100,7 @@ int run_ballistic(const BallisticArguments& arguments, const Workers& workers, c
       const std::filesystem::path directory = out / "runs" / run::ballistic_run_name(v);
       directories.push_back(directory);
       const std::filesystem::path file = directory / "scenario.json";
-      const std::string variant = run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string());
+      const std::string variant = run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string(), arguments.end_time_factor);
       if (const std::optional<int> finished = finished_run(directory, io::parse_scenario(variant, file.string()).resolved_json)) {
         codes[i] = *finished;
         kept[i] = true;

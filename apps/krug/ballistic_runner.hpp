@@ -20,6 +20,7 @@ struct BallisticArguments {
   bool quiet = false;
   bool pictures = false;      // the runs' pictures and plots (off: the study only needs summary.json)
   bool scale_end_time = true; // below the scenario's speed, end_time stretched by the speed ratio
+  double end_time_factor = 1.0;  // every run's end time multiplied by this (--end-time-factor)
 };
 
 // Exit code: 0 when the limit was bracketed within the tolerance, 1 when the study ended without it

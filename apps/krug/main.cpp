@@ -51,13 +51,14 @@ constexpr std::string_view usage = R"(usage:
       every constant of that set with its source. A scenario names a set as "materials": {"plate":
       "al6061-t6"} or {"plate": {"base": "al6061-t6", ...overrides...}} (docs/materials.md).
   krug ballistic SCENARIO.json --velocity MIN,MAX [--tolerance DV] [--points-above N] [--jobs N]
-                 [--out DIR] [--pictures] [--keep-end-time] [--mpi] [--quiet]
+                 [--out DIR] [--pictures] [--keep-end-time] [--end-time-factor F] [--mpi] [--quiet]
       Ballistic limit of a scenario with a "penetration" block: the projectile's initial velocity is
       scaled (direction kept); a bracket of MIN and MAX is narrowed by N-section (N = --jobs runs at a
       time) until no wider than DV (default 10 m/s), then --points-above (default 3) perforating runs
       above it feed a Lambert-Jonas fit. Each speed runs as krug run in DIR/runs/v<speed>/; writes
       DIR/ballistic.csv, ballistic.json, ballistic.png (default DIR: out/<scenario>-ballistic).
-      Below the scenario's speed the end time is stretched by the speed ratio unless --keep-end-time.
+      Below the scenario's speed the end time is stretched by the speed ratio unless --keep-end-time;
+      --end-time-factor F multiplies every run's end time (near the limit a projectile clears slowly).
       Speeds an earlier study into DIR finished are kept, not run again.
   mpirun -np N krug sweep|ballistic ...
       (a krug built with MPI) The runs go to the N ranks, one at a time each, rank 0 included; DIR
@@ -159,6 +160,7 @@ struct Arguments {
   double tolerance = 10.0;        // ballistic, m/s
   int points_above = 3;           // ballistic
   bool keep_end_time = false;     // ballistic
+  double end_time_factor = 1.0;   // ballistic
   bool run_pictures = false;      // ballistic: the runs' pictures and plots
   bool mpi = false;               // sweep, ballistic: on MPI ranks even when not started by a launcher
   int threads = 0;  // 0: the scenario's controls.threads
@@ -362,6 +364,14 @@ int main(int argc, char** argv) {
       }
     } else if (w == "--keep-end-time" && args.command == "ballistic") {
       args.keep_end_time = true;
+    } else if (w == "--end-time-factor" && args.command == "ballistic") {
+      const std::string* v = value();
+      char* end = nullptr;
+      const double f = v ? std::strtod(v->c_str(), &end) : 0.0;
+      if (!v || end == v->c_str() || *end != '\0' || !(f > 0.0) || !(f <= 100.0)) {
+        return fail_usage("--end-time-factor needs a number in (0, 100]");
+      }
+      args.end_time_factor = f;
     } else if (w == "--pictures" && args.command == "ballistic") {
       args.run_pictures = true;
     } else if (w == "--mpi" && (args.command == "sweep" || args.command == "ballistic")) {
@@ -471,6 +481,7 @@ int main(int argc, char** argv) {
       ballistic.quiet = args.quiet;
       ballistic.pictures = args.run_pictures;
       ballistic.scale_end_time = !args.keep_end_time;
+      ballistic.end_time_factor = args.end_time_factor;
       return krug::app::run_ballistic(ballistic, workers(args, mpi.get()), interrupted, signal_number);
     }
     return run(args);

@@ -745,13 +745,15 @@ BallisticProjectile ballistic_projectile(const std::string& scenario_text, const
 }
 
 std::string ballistic_variant(const std::string& scenario_text, const BallisticProjectile& projectile, double speed,
-                              bool scale_end_time, const std::string& origin) {
+                              bool scale_end_time, const std::string& origin, double end_time_factor) {
   const double factor = speed / projectile.speed;
   const OrderedJson velocity = {projectile.velocity[0] * factor, projectile.velocity[1] * factor};
   std::vector<io::ScenarioEdit> edits = {
       {fmt::format("bodies[{}].initial.velocity", projectile.body), velocity.dump()}};
-  if (scale_end_time && speed < projectile.speed && projectile.end_time > 0.0) {
-    edits.push_back({"end_time", OrderedJson(projectile.end_time * projectile.speed / speed).dump()});
+  const bool stretched = scale_end_time && speed < projectile.speed;
+  if (projectile.end_time > 0.0 && (stretched || end_time_factor != 1.0)) {
+    const double end_time = projectile.end_time * (stretched ? projectile.speed / speed : 1.0) * end_time_factor;
+    edits.push_back({"end_time", OrderedJson(end_time).dump()});
   }
   const OrderedJson document = OrderedJson::parse(scenario_text);
   const std::string base_title = document.contains("title") && document["title"].is_string()

@@ -142,9 +142,10 @@ BallisticProjectile ballistic_projectile(const std::string& scenario_text, const
 
 // The scenario with the projectile's initial velocity scaled to `speed` (direction kept), a title
 // naming the speed, and, when `scale_end_time` and speed < the given speed, end_time stretched by
-// given speed / speed (the same distance travelled; the end time is a bound for a run with a stop rule).
+// given speed / speed (the same distance travelled; the end time is a bound for a run with a stop rule),
+// then multiplied by `end_time_factor` (> 0; 1 leaves it).
 std::string ballistic_variant(const std::string& scenario_text, const BallisticProjectile& projectile, double speed,
-                              bool scale_end_time, const std::string& origin);
+                              bool scale_end_time, const std::string& origin, double end_time_factor = 1.0);
 
 // The run directory's name for a speed: "v0352.50".
 std::string ballistic_run_name(double speed);
