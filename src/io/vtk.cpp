@@ -1,6 +1,8 @@
 // VTK XML files readable by ParaView: an UnstructuredGrid (.vtu) of the active zones of every body and
 // a PolyData (.vtp) of the free particles. Cell fields are per zone, point fields per node;
-// coordinates (x, y, 0) or (z, r, 0). Every field, with its units, is listed in docs/outputs.md.
+// coordinates (x, y, 0) or (z, r, 0). The point and cell data are the output field registry's
+// (include/krug/solver/output_fields.hpp), in its order; every field, with its units, is listed in
+// docs/outputs.md.
 //
 // Binary (the default): every array in the file's appended section, raw bytes compressed with zlib
 // (vtkZLibDataCompressor: per array a UInt64 header of block count, block size, last block size and
@@ -9,14 +11,18 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
+#include <span>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <variant>
 
 #include "krug/core/error.hpp"
 #include "krug/io/outputs.hpp"
+#include "krug/solver/output_fields.hpp"
 
 namespace krug::io {
 
@@ -43,7 +49,7 @@ class VtkDocument {
   std::ostringstream& xml() { return xml_; }
 
   template <class T>
-  void array(const char* name, int components, const std::vector<T>& values) {
+  void array(std::string_view name, int components, const std::vector<T>& values) {
     const char* type = vtk_type<T>();
     if (encoding_ == VtkEncoding::ascii) {
       xml_ << fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="ascii">)", type, name,
@@ -101,15 +107,6 @@ class VtkDocument {
   std::string appended_;
 };
 
-// The deviator's components named by the scenario's axes: (xx, yy, xy, zz) planar, with zz the
-// out-of-plane component; (zz, rr, zr, tt) axisymmetric, with tt the hoop component.
-std::array<std::string, 4> deviator_names(GeometryKind geometry) {
-  if (geometry == GeometryKind::axisymmetric) {
-    return {"deviatoric_stress_zz", "deviatoric_stress_rr", "deviatoric_stress_zr", "deviatoric_stress_tt"};
-  }
-  return {"deviatoric_stress_xx", "deviatoric_stress_yy", "deviatoric_stress_xy", "deviatoric_stress_zz"};
-}
-
 // Text safe inside an XML attribute.
 std::string xml_escaped(const std::string& text) {
   std::string out;
@@ -144,6 +141,31 @@ void write_field_data(VtkDocument& vtk, const Simulation& simulation) {
   vtk.xml() << "    </FieldData>\n";
 }
 
+// The registry's fields of one location (include/krug/solver/output_fields.hpp), in its order, over
+// `items` (the nodes, active zones or particles written).
+void write_fields(VtkDocument& vtk, const Simulation& simulation, OutputLocation location, std::span<const Index> items) {
+  for (const OutputField& field : output_fields()) {
+    if (field.location != location) continue;
+    const OutputValues values = field.fill(simulation, items);
+    std::visit(
+        [&](const auto& v) {
+          if (v.size() != items.size() * static_cast<std::size_t>(field.components)) {
+            throw std::logic_error(fmt::format("VTK output: the field {} gave {} values for {} entries of {} components",
+                                               field.name, v.size(), items.size(), field.components));
+          }
+          vtk.array(field.name_in(simulation.geometry()), field.components, v);
+        },
+        values);
+  }
+}
+
+// 0, 1, ..., n - 1.
+std::vector<Index> all(Index n) {
+  std::vector<Index> items(static_cast<std::size_t>(n));
+  std::iota(items.begin(), items.end(), Index{0});
+  return items;
+}
+
 }  // namespace
 
 void write_vtu(const Simulation& simulation, const std::filesystem::path& file, VtkEncoding encoding) {
@@ -152,40 +174,14 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
   for (Index z = 0; z < mesh.zones.size(); ++z) {
     if (mesh.zones.active[z]) zones.push_back(z);
   }
-  std::vector<double> points, velocity;
-  std::vector<std::int32_t> node_body;
-  for (Index p = 0; p < mesh.nodes.size(); ++p) {
-    points.insert(points.end(), {mesh.nodes.x[p], mesh.nodes.y[p], 0.0});
-    velocity.insert(velocity.end(), {mesh.nodes.u[p], mesh.nodes.v[p], 0.0});
-    node_body.push_back(mesh.nodes.body[p]);
-  }
-  std::vector<std::int32_t> connectivity, offsets, body;
-  std::vector<std::uint8_t> types, damaged, criterion;
-  std::vector<double> density, pressure, energy, sound_speed, von_mises, plastic_strain, damage_time, damage, time_step;
-  std::array<std::vector<double>, 4> deviator;
+  std::vector<double> points;
+  for (Index p = 0; p < mesh.nodes.size(); ++p) points.insert(points.end(), {mesh.nodes.x[p], mesh.nodes.y[p], 0.0});
+  std::vector<std::int32_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
   for (Index z : zones) {
     for (Index n : mesh.zones.corners[z]) connectivity.push_back(n);
     offsets.push_back(static_cast<std::int32_t>(connectivity.size()));
     types.push_back(9);  // VTK_QUAD
-    body.push_back(mesh.zones.body[z]);
-    density.push_back(mesh.zones.density[z]);
-    pressure.push_back(mesh.zones.pressure[z]);
-    energy.push_back(mesh.zones.specific_energy[z]);
-    sound_speed.push_back(mesh.zones.sound_speed[z]);
-    const double sxx = mesh.zones.deviator_xx[z], syy = mesh.zones.deviator_yy[z], sxy = mesh.zones.deviator_xy[z],
-                 szz = mesh.zones.deviator_zz[z];
-    deviator[0].push_back(sxx);
-    deviator[1].push_back(syy);
-    deviator[2].push_back(sxy);
-    deviator[3].push_back(szz);
-    // sigma_vm = sqrt(3 J2), J2 = s:s / 2 with the shear component counted twice.
-    von_mises.push_back(std::sqrt(1.5 * (sxx * sxx + syy * syy + szz * szz + 2.0 * sxy * sxy)));
-    plastic_strain.push_back(mesh.zones.plastic_strain[z]);
-    damaged.push_back(mesh.zones.damaged[z]);
-    damage_time.push_back(mesh.zones.damage_time[z]);
-    criterion.push_back(mesh.zones.damage_criterion[z]);
-    damage.push_back(mesh.zones.damage[z]);
-    time_step.push_back(mesh.zones.stable_time_step[z]);
   }
   VtkDocument vtk(encoding, "UnstructuredGrid");
   vtk.xml() << "  <UnstructuredGrid>\n";
@@ -198,36 +194,20 @@ void write_vtu(const Simulation& simulation, const std::filesystem::path& file, 
   vtk.array("offsets", 1, offsets);
   vtk.array("types", 1, types);
   vtk.xml() << "      </Cells>\n      <PointData Vectors=\"velocity\">\n";
-  vtk.array("velocity", 3, velocity);
-  vtk.array("body", 1, node_body);
+  write_fields(vtk, simulation, OutputLocation::node, all(mesh.nodes.size()));
   vtk.xml() << "      </PointData>\n      <CellData Scalars=\"density\">\n";
-  vtk.array("body", 1, body);
-  vtk.array("density", 1, density);
-  vtk.array("pressure", 1, pressure);
-  vtk.array("specific_internal_energy", 1, energy);
-  vtk.array("sound_speed", 1, sound_speed);
-  const auto names = deviator_names(simulation.geometry());
-  for (int k = 0; k < 4; ++k) vtk.array(names[static_cast<std::size_t>(k)].c_str(), 1, deviator[static_cast<std::size_t>(k)]);
-  vtk.array("von_mises_stress", 1, von_mises);
-  vtk.array("equivalent_plastic_strain", 1, plastic_strain);
-  vtk.array("damaged", 1, damaged);
-  vtk.array("damage_onset_time", 1, damage_time);
-  vtk.array("damage_criterion", 1, criterion);
-  vtk.array("damage", 1, damage);
-  vtk.array("stable_time_step", 1, time_step);
+  write_fields(vtk, simulation, OutputLocation::zone, zones);
   write_text_atomically(file, vtk.finish("      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n"));
 }
 
 void write_vtp(const Simulation& simulation, const std::filesystem::path& file, VtkEncoding encoding) {
   const Particles& particles = simulation.particles();
-  std::vector<double> points, velocity;
-  std::vector<std::int32_t> connectivity, offsets, body;
+  std::vector<double> points;
+  std::vector<std::int32_t> connectivity, offsets;
   for (Index i = 0; i < particles.size(); ++i) {
     points.insert(points.end(), {particles.x[i], particles.y[i], 0.0});
-    velocity.insert(velocity.end(), {particles.u[i], particles.v[i], 0.0});
     connectivity.push_back(i);
     offsets.push_back(i + 1);
-    body.push_back(particles.body[i]);
   }
   VtkDocument vtk(encoding, "PolyData");
   vtk.xml() << "  <PolyData>\n";
@@ -240,11 +220,7 @@ void write_vtp(const Simulation& simulation, const std::filesystem::path& file, 
   vtk.array("connectivity", 1, connectivity);
   vtk.array("offsets", 1, offsets);
   vtk.xml() << "      </Verts>\n      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
-  vtk.array("velocity", 3, velocity);
-  vtk.array("radius", 1, particles.radius);
-  vtk.array("mass", 1, particles.mass);
-  vtk.array("body", 1, body);
-  vtk.array("birth_time", 1, particles.birth_time);
+  write_fields(vtk, simulation, OutputLocation::particle, all(particles.size()));
   write_text_atomically(file, vtk.finish("      </PointData>\n    </Piece>\n  </PolyData>\n"));
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "krug/io/outputs.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/run/run.hpp"
+#include "krug/solver/output_fields.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -129,6 +131,104 @@ TEST_CASE("docs/outputs.md lists exactly the VTK fields written, for both geomet
     CHECK(array_names(vtu, "CellData") == documented_fields("vtu-cell-fields", geometry));
     CHECK(array_names(vtu, "PointData") == std::vector<std::string>{"velocity", "body"});
     CHECK(array_names(vtp, "PointData") == documented_fields("vtp-point-fields", geometry));
+  }
+}
+
+namespace {
+
+// The DataArrays inside `section` (CellData, PointData) of an ASCII VTK XML file: name, components
+// and the number of values written.
+struct WrittenArray {
+  std::string name;
+  int components = 0;
+  std::size_t values = 0;
+};
+std::vector<WrittenArray> written_arrays(const std::string& text, const std::string& section) {
+  std::vector<WrittenArray> arrays;
+  const auto begin = text.find("<" + section);
+  const auto end = text.find("</" + section + ">");
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end != std::string::npos);
+  auto attribute = [&](std::size_t element, const std::string& key) {
+    const auto at = text.find(key + "=\"", element) + key.size() + 2;
+    return text.substr(at, text.find('"', at) - at);
+  };
+  for (auto at = text.find("<DataArray", begin); at != std::string::npos && at < end; at = text.find("<DataArray", at + 1)) {
+    WrittenArray array{attribute(at, "Name"), std::stoi(attribute(at, "NumberOfComponents")), 0};
+    const auto body = text.find('>', at) + 1;
+    std::istringstream values(text.substr(body, text.find("</DataArray>", body) - body));
+    for (std::string value; values >> value;) ++array.values;
+    arrays.push_back(array);
+  }
+  return arrays;
+}
+
+// The registry's fields of one location, in its order.
+std::vector<const krug::OutputField*> registry_fields(krug::OutputLocation location) {
+  std::vector<const krug::OutputField*> fields;
+  for (const krug::OutputField& field : krug::output_fields()) {
+    if (field.location == location) fields.push_back(&field);
+  }
+  return fields;
+}
+
+}  // namespace
+
+TEST_CASE("the output field registry: unique names, and the VTK files write its fields as it describes them",
+          "[app][outputs]") {
+  using krug::OutputLocation;
+  for (const auto geometry : {krug::GeometryKind::planar, krug::GeometryKind::axisymmetric}) {
+    for (const auto location : {OutputLocation::node, OutputLocation::zone, OutputLocation::particle}) {
+      std::vector<std::string_view> names;
+      for (const krug::OutputField* field : registry_fields(location)) {
+        CHECK(field->components >= 1);
+        CHECK(field->fill != nullptr);
+        names.push_back(field->name_in(geometry));
+      }
+      std::sort(names.begin(), names.end());
+      CHECK(std::adjacent_find(names.begin(), names.end()) == names.end());
+    }
+  }
+  // A planar scene and an axisymmetric one, the latter with two free particles, written in ASCII so
+  // that the values can be counted.
+  const fs::path dir = krug::test::scratch("output_registry");
+  for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
+    INFO(example);
+    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    krug::Simulation simulation(scenario.setup);
+    krug::SimulationState state = simulation.state();
+    state.particles.add({0.01, 0.001}, {-100.0, 5.0}, 1e-6, 1e-4, 1, 0.0);
+    state.particles.add({0.02, 0.002}, {-50.0, 0.0}, 2e-6, 2e-4, 1, 0.0);
+    simulation.restore(state);
+    krug::io::write_vtu(simulation, dir / "state.vtu", krug::io::VtkEncoding::ascii);
+    krug::io::write_vtp(simulation, dir / "particles.vtp", krug::io::VtkEncoding::ascii);
+    const std::string vtu = krug::test::read_text(dir / "state.vtu");
+    const std::string vtp = krug::test::read_text(dir / "particles.vtp");
+    const krug::GeometryKind geometry = scenario.setup.geometry;
+    auto count = [&](const std::string& text, const std::string& key) {
+      const auto at = text.find(key + "=\"") + key.size() + 2;
+      return static_cast<std::size_t>(std::stoul(text.substr(at, text.find('"', at) - at)));
+    };
+    struct Part {
+      std::string text, section, count_key;
+      OutputLocation location;
+    };
+    const std::vector<Part> parts = {{vtu, "PointData", "NumberOfPoints", OutputLocation::node},
+                                     {vtu, "CellData", "NumberOfCells", OutputLocation::zone},
+                                     {vtp, "PointData", "NumberOfPoints", OutputLocation::particle}};
+    CHECK(count(vtp, "NumberOfPoints") == 2);
+    for (const Part& part : parts) {
+      INFO(part.section << " of " << (part.location == OutputLocation::particle ? "particles.vtp" : "state.vtu"));
+      const std::vector<WrittenArray> arrays = written_arrays(part.text, part.section);
+      const std::vector<const krug::OutputField*> fields = registry_fields(part.location);
+      REQUIRE(arrays.size() == fields.size());
+      for (std::size_t k = 0; k < arrays.size(); ++k) {
+        INFO(arrays[k].name);
+        CHECK(arrays[k].name == fields[k]->name_in(geometry));
+        CHECK(arrays[k].components == fields[k]->components);
+        CHECK(arrays[k].values == count(part.text, part.count_key) * static_cast<std::size_t>(fields[k]->components));
+      }
+    }
   }
 }
 
