@@ -15,6 +15,16 @@
 
 namespace krug::io {
 
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c == '\n' ? ' ' : c;
+  }
+  return quoted + "\"";
+}
+
 namespace {
 
 using Json = nlohmann::json;
@@ -121,16 +131,6 @@ std::string file_safe(const std::string& text) {
     out += ok ? c : '_';
   }
   return out.substr(0, 40);
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
 }
 
 std::string csv_number(const Json& value) {

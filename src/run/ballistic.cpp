@@ -19,6 +19,7 @@ namespace {
 
 using Json = nlohmann::json;
 using OrderedJson = nlohmann::ordered_json;
+using io::csv_field;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 // A k x k system (k <= 3) by Gaussian elimination with partial pivoting; false when singular.
@@ -573,16 +574,6 @@ Json fit_json(const CurveFit& fit) {
   }
   j["residuals"] = residuals;
   return j;
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
 }
 
 std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); }

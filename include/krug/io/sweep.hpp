@@ -29,6 +29,10 @@ struct ScenarioEdit {
 // Used by `krug sweep` and `krug ballistic` to make variants in memory.
 std::string edit_scenario(const std::string& text, const std::vector<ScenarioEdit>& edits, const std::string& origin);
 
+// A CSV cell: the text as it is, or quoted (inner quotes doubled, newlines as spaces) where it holds a
+// comma, a quote or a newline.
+std::string csv_field(const std::string& text);
+
 struct SweepParameter {
   std::string path;                 // as given
   std::vector<std::string> values;  // JSON texts (a value that is not JSON is taken as a string)
