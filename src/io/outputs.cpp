@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "krug/core/error.hpp"
+#include "krug/solver/history_columns.hpp"
 
 namespace krug::io {
 
@@ -405,14 +406,9 @@ void RunRecorder::write_gauge_row(const Simulation& simulation) {
 }
 
 std::string RunRecorder::history_header(const Simulation& simulation) {
-  const GeometryKind g = simulation.geometry();
-  const std::string a0(axis_name(g, 0)), a1(axis_name(g, 1));
-  std::string header = "time,cycle,dt";
-  for (const Body& body : simulation.bodies()) {
-    header += fmt::format(",{0}_v{1},{0}_v{2},{0}_{1},{0}_{2}", body.name, a0, a1);
-  }
-  return header + ",kinetic,internal,plastic,viscous,hourglass,contact,contact_overlap,converted,boundary,total,relative_drift,"
-                  "particles\n";
+  std::string header;
+  for (const std::string& name : history_names(simulation)) header += (header.empty() ? "" : ",") + name;
+  return header + "\n";
 }
 
 void RunRecorder::append_history(const std::string& text) {
@@ -429,17 +425,17 @@ RunRecorder::~RunRecorder() {
 }
 
 void RunRecorder::write_history_row(const Simulation& simulation) {
-  const double whole = simulation.whole_body_factor();
-  const EnergyLedger& e = simulation.ledger().energy;
-  std::string row = fmt::format("{:.9e},{},{:.6e}", simulation.time(), simulation.cycle(), simulation.last_time_step());
-  for (const Body& body : simulation.bodies()) {
-    const BodySummary b = simulation.summarise(body);
-    row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e}", b.velocity.x, b.velocity.y, b.centroid.x, b.centroid.y);
+  // A count as an integer, any other value in scientific notation with the column's significant digits.
+  std::string row;
+  for (const HistoryCell& cell : history_cells(simulation)) {
+    if (!row.empty()) row += ',';
+    if (cell.column->digits == 0) {
+      row += fmt::format("{}", static_cast<long long>(cell.value));
+    } else {
+      row += fmt::format("{:.{}e}", cell.value, cell.column->digits - 1);
+    }
   }
-  row += fmt::format(",{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.12e},{:.3e},{}\n",
-                     whole * e.kinetic, whole * e.internal, whole * e.plastic, whole * e.viscous,
-                     whole * e.hourglass, whole * e.contact, whole * e.overlap, whole * e.converted, whole * e.boundary,
-                     whole * e.total(), simulation.ledger().relative_energy_drift(), simulation.particles().size());
+  row += '\n';
   append_history(row);
 }
 

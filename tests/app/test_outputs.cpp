@@ -13,6 +13,7 @@
 #include "krug/io/outputs.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/run/run.hpp"
+#include "krug/solver/history_columns.hpp"
 #include "krug/solver/output_fields.hpp"
 #include "test_support.hpp"
 
@@ -294,4 +295,48 @@ TEST_CASE("docs/outputs.md lists exactly the history.csv columns written", "[app
   CHECK(sorted_written == sorted_documented);
   CHECK(written.front() == "time");
   CHECK(written.back() == "particles");
+}
+
+TEST_CASE("the history column registry: unique names, and history.csv has a cell per column in every row",
+          "[app][outputs]") {
+  for (const krug::HistoryColumn& column : krug::history_columns()) {
+    CHECK(column.value != nullptr);
+    CHECK(column.digits >= 0);
+    // A per-body column names its body, so that the bodies' columns differ.
+    CHECK(column.per_body == (column.name.find("{body}") != std::string_view::npos));
+  }
+  // A planar scene with one body and an axisymmetric one with two.
+  for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
+    INFO(example);
+    krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    scenario.setup.controls.end_time = 1e-7;
+    const krug::Simulation simulation(scenario.setup);
+    const std::vector<std::string> names = krug::history_names(simulation);
+    std::size_t expected = 0;
+    for (const krug::HistoryColumn& column : krug::history_columns()) {
+      expected += column.per_body ? simulation.bodies().size() : 1;
+    }
+    CHECK(names.size() == expected);
+    CHECK(krug::history_cells(simulation).size() == names.size());
+    std::vector<std::string> sorted = names;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+
+    const fs::path dir = krug::test::scratch(std::string("history_registry_") + (example[0] == 'v' ? "sod" : "fracture"));
+    krug::run::RunOptions options;
+    options.output_directory = dir;
+    REQUIRE(krug::run::run_scenario(scenario, options).status == krug::io::RunStatus::completed);
+    std::istringstream history(krug::test::read_text(dir / "history.csv"));
+    std::string line;
+    REQUIRE(std::getline(history, line));
+    std::string header;
+    for (const std::string& name : names) header += (header.empty() ? "" : ",") + name;
+    CHECK(line == header);
+    std::size_t rows = 0;
+    while (std::getline(history, line)) {
+      ++rows;
+      CHECK(static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1 == names.size());
+    }
+    CHECK(rows >= 2);
+  }
 }
