@@ -13,40 +13,6 @@ using krug::test::Json;
 
 namespace {
 
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
-  std::stringstream in(krug::test::read_text(file));
-  std::string line;
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-  auto split = [](const std::string& text) {
-    std::vector<std::string> cells;
-    std::string cell;
-    bool quoted = false;
-    for (char c : text) {
-      if (c == '"') {
-        quoted = !quoted;
-      } else if (c == ',' && !quoted) {
-        cells.push_back(cell);
-        cell.clear();
-      } else {
-        cell += c;
-      }
-    }
-    cells.push_back(cell);
-    return cells;
-  };
-  while (std::getline(in, line)) {
-    const auto cells = split(line);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 const fs::path scenario = fs::path(KRUG_APP_TEST_DATA_DIR) / "ballistic_plate.json";
 
@@ -63,7 +29,7 @@ TEST_CASE("krug ballistic brackets the limit of a small plate and writes consist
   REQUIRE(result.exit_code == 0);
   CHECK_THAT(result.output, Catch::Contains("ballistic limit V_bl") && Catch::Contains("V50"));
   const Json study = krug::test::read_json(dir / "out" / "ballistic.json");
-  const auto rows = read_csv(dir / "out" / "ballistic.csv");
+  const auto rows = krug::test::read_csv_table(dir / "out" / "ballistic.csv");
   REQUIRE(study["bracketed"] == true);
   REQUIRE(study["converged"] == true);
   const double low = study["bracket"][0], high = study["bracket"][1];

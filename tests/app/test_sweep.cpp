@@ -14,50 +14,6 @@
 namespace fs = std::filesystem;
 using krug::io::parse_sweep_set;
 
-namespace {
-
-// sweep.csv as rows of cells (RFC 4180 quoting: "a,b" and "" for a quote).
-std::vector<std::map<std::string, std::string>> read_table(const fs::path& file) {
-  std::stringstream in(krug::test::read_text(file));
-  std::string line;
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-  auto split = [](const std::string& text) {
-    std::vector<std::string> cells;
-    std::string cell;
-    bool quoted = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      const char c = text[i];
-      if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
-        cell += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = !quoted;
-      } else if (c == ',' && !quoted) {
-        cells.push_back(cell);
-        cell.clear();
-      } else {
-        cell += c;
-      }
-    }
-    cells.push_back(cell);
-    return cells;
-  };
-  while (std::getline(in, line)) {
-    const auto cells = split(line);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    REQUIRE(cells.size() == header.size());
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-}  // namespace
 
 TEST_CASE("sweep values (--set) split at top-level commas and keep JSON values whole", "[app][sweep]") {
   const auto p = parse_sweep_set(R"(materials.steel.eos=1,2.5,[3,4],"a,b",{"k":[1,2]},steel)");
@@ -111,7 +67,7 @@ TEST_CASE("krug sweep runs the variants in parallel and tabulates them", "[app][
       dir / "sweep.log");
   INFO(result.output);
   REQUIRE(result.exit_code == 0);
-  const auto rows = read_table(dir / "sweep.csv");
+  const auto rows = krug::test::read_csv_table(dir / "sweep.csv");
   REQUIRE(rows.size() == 4);
   const std::vector<std::pair<double, double>> expected = {{10, 2785}, {10, 3000}, {20, 2785}, {20, 3000}};
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -145,7 +101,7 @@ TEST_CASE("a sweep with a failing variant exits 1 and says so in the table", "[a
       dir / "sweep.log");
   INFO(result.output);
   CHECK(result.exit_code == 1);
-  const auto rows = read_table(dir / "sweep.csv");
+  const auto rows = krug::test::read_csv_table(dir / "sweep.csv");
   REQUIRE(rows.size() == 2);
   CHECK(rows[0].at("status") == "failed");
   // A floor above the stable step (1.9e-8 s) stops the run at its first cycle with a diagnostic.
@@ -170,7 +126,7 @@ TEST_CASE("a sweep of a penetration scenario tabulates the penetration block", "
       dir / "sweep.log");
   INFO(result.output);
   REQUIRE(result.exit_code == 0);
-  const auto rows = read_table(dir / "out" / "sweep.csv");
+  const auto rows = krug::test::read_csv_table(dir / "out" / "sweep.csv");
   REQUIRE(rows.size() == 2);
   for (const auto& row : rows) {
     INFO(row.at("variant"));
@@ -224,7 +180,7 @@ TEST_CASE("a sweep into a folder with finished variants runs only the others (re
   const auto first = krug::test::run_krug(arguments, dir / "first.log");
   INFO(first.output);
   REQUIRE(first.exit_code == 0);
-  const auto table = without_timing(read_table(dir / "sweep.csv"));
+  const auto table = without_timing(krug::test::read_csv_table(dir / "sweep.csv"));
   REQUIRE(table.size() == 3);
   const fs::path kept = dir / table[1].at("variant");
   const auto kept_time = fs::last_write_time(kept / "summary.json");
@@ -239,11 +195,11 @@ TEST_CASE("a sweep into a folder with finished variants runs only the others (re
   REQUIRE(second.exit_code == 0);
   CHECK_THAT(second.output, Catch::Contains("1 of them finished in an earlier sweep into this folder (kept); 2 to run"));
   CHECK(fs::last_write_time(kept / "summary.json") == kept_time);
-  CHECK(without_timing(read_table(dir / "sweep.csv")) == table);
+  CHECK(without_timing(krug::test::read_csv_table(dir / "sweep.csv")) == table);
   // A folder whose run was of another scenario is run again.
   krug::test::write_text(kept / "scenario.resolved.json", "{}\n");
   const auto third = krug::test::run_krug(arguments, dir / "third.log");
   INFO(third.output);
   CHECK_THAT(third.output, Catch::Contains("2 of them finished in an earlier sweep into this folder (kept); 1 to run"));
-  CHECK(without_timing(read_table(dir / "sweep.csv")) == table);
+  CHECK(without_timing(krug::test::read_csv_table(dir / "sweep.csv")) == table);
 }
