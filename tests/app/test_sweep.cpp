@@ -14,7 +14,6 @@
 namespace fs = std::filesystem;
 using krug::io::parse_sweep_set;
 
-
 TEST_CASE("sweep values (--set) split at top-level commas and keep JSON values whole", "[app][sweep]") {
   const auto p = parse_sweep_set(R"(materials.steel.eos=1,2.5,[3,4],"a,b",{"k":[1,2]},steel)");
   CHECK(p.path == "materials.steel.eos");
