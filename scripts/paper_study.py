@@ -2,7 +2,7 @@
 """The validation study of the paper's case (docs/validation.md), generated, run and tabulated.
 
     scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 10]
-                                  [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity,knobs]
+                                  [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity,knobs,johnson_cook]
 
 Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
 directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
@@ -20,6 +20,8 @@ Fig. 6 group. Groups:
   knobs        2.6 g, monolithic and layered 3 mm: the reference and one numerical control changed at a
                time (lead erosion 0.05 / 0.2; hourglass 0.02 / 0.15, both parts and each alone; c_l 0.15 / 0.25 / 1;
                c_q 0.5 / 0.75 / 1.5; gap tolerance)
+  johnson_cook 2.6 g, monolithic 3 mm, end time doubled: the paper's elongation criterion, Johnson-Cook
+               damage (6061-T6 D1..D5) on the paper's plate, and the library's whole 6061-T6 set
   sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target
                for the gap
 The study resolution (--zones-per-mm, default 5) applies to all but the mesh group.
@@ -101,6 +103,16 @@ def cases(groups, zones):
             for name, options in knobs:
                 out.append(("knobs", f"knobs_{kind}_{name}",
                             ["--mass", "2.6", "--kind", kind, "--zones-per-mm", str(zones)] + options))
+    if "johnson_cook" in groups:
+        # The monolithic 3 mm target, 2.6 g, at the study resolution, the end time doubled: the paper's
+        # elongation criterion; Johnson-Cook damage with the library's 6061-T6 constants on the paper's
+        # plate; the library's whole 6061-T6 set (strength, EOS and damage).
+        jc = '{"base": "paper-al6061-t6", "fracture": {"model": "johnson_cook", "d1": -0.77, "d2": 1.45, "d3": -0.47, "d4": 0.0, "d5": 1.6}}'
+        library = '{"base": "al6061-t6", "fracture": {"model": "johnson_cook"}}'
+        base = ["--mass", "2.6", "--kind", "monolithic", "--zones-per-mm", str(zones), "--scale", "end_time=2"]
+        out.append(("johnson_cook", f"elongation_z{zones}", base))
+        out.append(("johnson_cook", f"jcpaper_z{zones}", base + ["--set", f"materials.al6061={jc}"]))
+        out.append(("johnson_cook", f"jclib_z{zones}", base + ["--set", f"materials.al6061={library}"]))
     if "ordering" in groups:
         # A: the target's numerics as the paper's (2.6 g, 10 zones per mm): the paper's summation contact,
         # or conversion by loosening alone (the altitude rules f_h and f_i made inactive), each crossed with
@@ -130,14 +142,20 @@ def cases(groups, zones):
 
 def generate(outdir, name, options):
     """Writes the scenario; returns its physics (the scenario without title and description) as text.
-    Options "--set PATH=VALUE" (a dotted JSON path, a JSON value) edit the generated scenario."""
+    Options "--set PATH=VALUE" (a dotted JSON path, a JSON value) edit the generated scenario;
+    "--scale KEY=FACTOR" multiplies a top-level number (end_time=2 doubles the end time)."""
     edits = [options[i + 1] for i, o in enumerate(options) if o == "--set"]
-    options = [o for i, o in enumerate(options) if o != "--set" and (i == 0 or options[i - 1] != "--set")]
+    scales = [options[i + 1] for i, o in enumerate(options) if o == "--scale"]
+    ours = ("--set", "--scale")
+    options = [o for i, o in enumerate(options) if o not in ours and (i == 0 or options[i - 1] not in ours)]
     subprocess.run([sys.executable, PAPER_CASE, "generate", os.path.join(outdir, "scenarios"), "--name", name] + options,
                    check=True, stdout=subprocess.DEVNULL)
     path = os.path.join(outdir, "scenarios", f"{name}.json")
     scenario = json.load(open(path))
-    if edits:
+    if edits or scales:
+        for scale in scales:
+            key, factor = scale.split("=", 1)
+            scenario[key] *= float(factor)
         for edit in edits:
             keys, value = edit.split("=", 1)
             at = scenario

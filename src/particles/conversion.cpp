@@ -1,5 +1,6 @@
 #include "krug/particles/conversion.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "krug/mesh/quad.hpp"
@@ -17,6 +18,10 @@ ConversionEnergy convert_zone_to_particles(Mesh& mesh, Particles& particles, Ind
   const double mass = zones.mass[z];
   const quad::Corners x = mesh.corner_positions(z);
   const double area = zones.area[z];
+  // The disc inscribed in the zone: of diameter sqrt(A) in a square, but never wider than the zone's
+  // smallest altitude (A over its longest edge, the inscribed diameter of a parallelogram), so that a
+  // flattened zone does not leave a disc that reaches through its faces into its neighbours.
+  const double inscribed_diameter = std::min(std::sqrt(area), quad::smallest_altitude(x, area));
 
   double corner_total = 0.0;
   Vec2 momentum;
@@ -32,15 +37,15 @@ ConversionEnergy convert_zone_to_particles(Mesh& mesh, Particles& particles, Ind
     for (int p = 0; p < 4; ++p) {
       const quad::Corners region = quad::corner_region(x, p);
       particles.add(quad::centre(region), nodes.velocity(n[p]), corner_mass[p] * mass / corner_total,
-                    0.25 * std::sqrt(area), origin, time);
+                    0.25 * inscribed_diameter, origin, time);
     }
   } else {
-    // One particle inscribed in the zone: radius sqrt(A)/2, the zone's mass and momentum.
+    // One particle inscribed in the zone, the zone's mass and momentum.
     for (int p = 0; p < 4; ++p) {
       const Vec2 d = nodes.velocity(n[p]) - mean_velocity;
       kinetic_defect += 0.5 * corner_mass[p] * dot(d, d);
     }
-    particles.add(quad::centre(x), mean_velocity, mass, 0.5 * std::sqrt(area), origin, time);
+    particles.add(quad::centre(x), mean_velocity, mass, 0.5 * inscribed_diameter, origin, time);
   }
   ConversionEnergy energy;
   energy.internal = mass * zones.specific_energy[z];

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,9 @@ struct PaperRun {
   std::vector<Onset> first_damage;          // per plate, anywhere
   std::vector<Onset> first_damage_on_axis;  // per plate, zone centroid within 1 mm of the axis
   std::vector<std::size_t> fragments;       // per plate
+  // Per plate: its material moving along the shot at more than half the bullet's speed at the end, the
+  // pieces besides its largest and its free elements (kg): the plug, whole or converted.
+  std::vector<double> plug_mass;
   double plug_thickness_on_axis = 0.0;      // monolithic: axial extent of the fast plate zones at r < 0.5 mm
   std::string status;
   std::string stopped_by;
@@ -114,10 +118,24 @@ PaperRun run_paper_case(const std::string& file) {
     run.momentum_error = std::abs(ledger.axial_momentum - (ledger.initial_axial_momentum + ledger.axial_boundary_impulse)) /
                          std::abs(ledger.initial_axial_momentum);
     run.energy_drift = ledger.relative_energy_drift();
-    for (std::size_t p = 1; p <= plates; ++p) run.fragments.push_back(sim.fragments(sim.bodies()[p]).size());
+    const double bullet_speed = -sim.summarise(sim.bodies()[0]).velocity.x;
+    for (std::size_t p = 1; p <= plates; ++p) {
+      const std::vector<Fragment> pieces = sim.fragments(sim.bodies()[p]);
+      run.fragments.push_back(pieces.size());
+      double plug = 0.0;
+      for (std::size_t k = 1; k < pieces.size(); ++k) {
+        if (-pieces[k].velocity.x > 0.5 * bullet_speed) plug += pieces[k].mass;
+      }
+      const Particles& particles = sim.particles();
+      for (Index i = 0; i < particles.size(); ++i) {
+        if (particles.body[i] == static_cast<std::int32_t>(p) && -particles.u[i] > 0.5 * bullet_speed) {
+          plug += particles.mass[i] * sim.whole_body_factor();
+        }
+      }
+      run.plug_mass.push_back(plug);
+    }
     if (plates != 1) return;
     // The plug of a single plate: the plate's zones moving faster than half the bullet, on the axis.
-    const double bullet_speed = -sim.summarise(sim.bodies()[0]).velocity.x;
     const Mesh& mesh = sim.mesh();
     const Body& plate = sim.bodies()[1];
     double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
@@ -161,8 +179,9 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
   CHECK(run.penetration.residual_velocity > 0.0);
   CHECK(loss > 0.0);
   CHECK(std::abs(loss - band_centre) <= band_half_width);
-  // The lead's erosion (altitude ratio 0.1) is the bullet's only loss of mass here.
-  CHECK(run.penetration.mass_lost == Approx(run.penetration.eroded_mass).margin(1e-12));
+  // The largest piece loses the lead its erosion (altitude ratio 0.1) removes and, where eroded zones
+  // cut a piece off the mushroom's rim, that piece too (0.022 g in the monolithic case at 5 zones per mm).
+  CHECK(run.penetration.mass_lost >= run.penetration.eroded_mass - 1e-12);
   CHECK(run.penetration.eroded_mass < 0.2 * run.penetration.initial_mass);
   CHECK(run.penetration.target_energy_absorbed > 0.0);
   // The whole bullet (every node and free element of its lead) keeps all its mass on the books, and it
@@ -234,13 +253,20 @@ TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zo
 TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
   check_common(run, "paper: spaced 3 x 1 mm", 0.1685, 0.0275);
-  // The paper: "plugging of each plate in turn". Damage in order, and every plate in pieces.
+  // The paper: "plugging of each plate in turn". Damage in order, and a plug out of every plate: the
+  // plate is in pieces, or its plug left as free elements, its zones fully fractured and converted
+  // (at 5 zones per mm the second plate's does: 72 zones, no piece): the plate's material moving on
+  // with the bullet (pieces and free elements faster than half the bullet) weighs at least half the
+  // cylinder of the bullet's radius through the 1 mm plate, pi R^2 h rho0 = 0.0656 g.
   REQUIRE(run.first_damage.size() == 3);
   CHECK(run.first_damage[0].time < run.first_damage[1].time);
   CHECK(run.first_damage[1].time < run.first_damage[2].time);
+  const double cylinder = std::numbers::pi * bullet_radius * bullet_radius * 1e-3 * 2700.0;
   for (std::size_t p = 0; p < 3; ++p) {
-    INFO("plate " << p + 1 << ": " << run.fragments[p] << " fragments");
-    CHECK(run.fragments[p] >= 2);
+    INFO("plate " << p + 1 << ": " << run.fragments[p] << " fragments, plug " << run.plug_mass[p] * 1e3 << " g");
+    report("paper: spaced 3 x 1 mm", "plate " + std::to_string(p + 1) + ": plug moving on (g; pieces and free elements)",
+           format_number("> %.4f", 0.5 * cylinder * 1e3), run.plug_mass[p] * 1e3, "", 0, 0.0);
+    CHECK((run.fragments[p] >= 2 || run.plug_mass[p] > 0.5 * cylinder));
   }
 
 }

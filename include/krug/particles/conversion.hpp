@@ -1,7 +1,9 @@
 #pragma once
 // A zone leaves the mesh as free elements (Gulidov & Shabalin 1996; step 7 of the time step): one
-// particle inscribed in the zone (radius sqrt(A)/2, the zone's mass and momentum) or 2 x 2
-// sub-particles (each corner's mass with its node's velocity, which also keeps kinetic energy exact).
+// particle inscribed in the zone (radius min(sqrt(A), h)/2 with h the zone's smallest altitude, A over
+// its longest edge: sqrt(A)/2 in a square, h/2 in a flattened zone; the zone's mass and momentum) or
+// 2 x 2 sub-particles of half that radius (each corner's mass with its node's velocity, which also
+// keeps kinetic energy exact).
 // Mass and momentum pass exactly. The zone's share of each corner node's mass leaves with it; a node
 // left without zones keeps no mass; the inverse masses are renewed (0 on a held degree of freedom);
 // the zone is deactivated and unlinked from its neighbours. Which zones convert, and why, is the

@@ -10,7 +10,7 @@ namespace krug {
 struct FractureControls {
   double altitude_ratio = 0.25;            // f_h: fully fractured when the smallest altitude < f_h x initial
   double interior_altitude_ratio = 0.1;    // f_i: a damaged interior zone this thin converts too
-  int particles_per_zone = 1;              // 1 (radius sqrt(A)/2) or 4 (2x2, corner masses, node velocities)
+  int particles_per_zone = 1;              // 1 (inscribed, radius min(sqrt(A), h)/2) or 4 (2x2, corner masses, node velocities)
   double time_step_floor_ratio = 0.2;      // damaged zones never drive dt below this x the median zone dt
   double particle_travel = 0.5;            // a particle moves at most this fraction of its radius per step
 };
