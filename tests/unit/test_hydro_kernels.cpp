@@ -246,7 +246,7 @@ TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[h
 //           sum_p dV/dr_p = A (moving the zone by dr changes V = integral of r dA by A dr) and the in-plane
 //           operators (dA/dx_p, or the r-weighted B_p of a body with strength) sum to zero.
 // Tolerance: 1e-13 of the largest corner force (the sums cancel terms of that size).
-TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially; radially the hoop stress)",
+TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, and radially to the hoop stress)",
           "[hydro][kernel]") {
   const double pressure = 3.0e8;
   const Deviator stress{1.1e8, 2.3e7, -7.7e7, -1.33e8};
