@@ -84,14 +84,7 @@ Model read_model_parameters(JsonObject& spec, double reference_density, const St
 template <class Variant>
 Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, double reference_density,
                    const Strength* strength = nullptr, bool echo_fallback = true) {
-  constexpr std::size_t count = std::variant_size_v<Variant>;
-  const std::vector<std::string> names = [] {
-    std::vector<std::string> list;
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (list.emplace_back(std::variant_alternative_t<I, Variant>::name), ...);
-    }(std::make_index_sequence<count>{});
-    return list;
-  }();
+  const std::vector<std::string> names = alternative_names<Variant>();
   std::string chosen;
   if (fallback && !echo_fallback && !spec.has("model")) {
     spec.optional_raw("model");  // named among the valid keys; the default is not written out
@@ -99,16 +92,9 @@ Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, d
   } else {
     chosen = fallback ? spec.choice("model", names, *fallback) : spec.choice("model", names);
   }
-  Variant result;
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (void)((chosen == std::variant_alternative_t<I, Variant>::name
-                ? (result = read_model_parameters<std::variant_alternative_t<I, Variant>>(spec, reference_density,
-                                                                                          strength),
-                   true)
-                : false) ||
-           ...);
-  }(std::make_index_sequence<count>{});
-  return result;
+  return make_alternative<Variant>(chosen, [&]<class Model>(std::type_identity<Model>) {
+    return read_model_parameters<Model>(spec, reference_density, strength);
+  });
 }
 
 // An erosion block {"altitude_ratio", "plastic_strain"}; keys not given keep the values of `base`.
