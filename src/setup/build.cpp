@@ -51,17 +51,27 @@ generate::Patch generate_kind(const SectorMesh& sector, const generate::Position
   return generate::sector(mesh, sector.radii, sector.angles, body, map);
 }
 
-generate::Patch generate_kind(const NosedCylinderMesh& cylinder, const generate::PositionMap& /*map: not applied*/,
-                              Mesh& mesh, Index body, long before, long zone_limit, const std::string& where) {
+generate::Patch generate_kind(const NosedCylinderMesh& cylinder, const generate::PositionMap& map, Mesh& mesh,
+                              Index body, long before, long zone_limit, const std::string& where) {
   const generate::NosedCylinderParams& p = cylinder.params;
   // An upper bound of the generator's zone count: every column of the O-grid and shank.
   const long across = static_cast<long>(p.radial_zones) + p.core_zones + p.nose_zones;
   check_zone_count(across * (across + p.shank_zones), before, zone_limit, where, "up to ");
+  generate::Patch patch;
   try {
-    return generate::nosed_cylinder(mesh, p, body);
+    patch = generate::nosed_cylinder(mesh, p, body);
   } catch (const InputError& e) {
     fail(where, e.what());  // the generator's reason, with the body's name
   }
+  // The map moves every generated node, as the other kinds' generators apply it.
+  if (map) {
+    for (Index n = patch.node_begin; n < patch.node_end; ++n) {
+      const Vec2 moved = map(mesh.nodes.position(n));
+      mesh.nodes.x[n] = moved.x;
+      mesh.nodes.y[n] = moved.y;
+    }
+  }
+  return patch;
 }
 
 generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, long zone_limit,

@@ -187,7 +187,7 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
 // the trace (0) kept, the out-of-plane component untouched, no plastic strain, the density kept.
 // Tolerances: the strain rate is zero up to the round-off of the velocity gradient, |L| 1e-16, which
 // the Hooke increment multiplies by 2 mu dt: 2 mu x 2 tan(theta/2) x 1e-16 ~ 3e-6 Pa for mu = 80 GPa;
-// against |s| ~ 3e8 Pa that is 1e-14, and 1e-12 of |s| leaves a margin of 100.
+// against |s| = 2.1e8 Pa that is 1.5e-14, and 1e-12 of |s| leaves a margin of about 70.
 TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[hydro][kernel]") {
   const double theta = 0.2;  // rad, in one step
   const double dt = 1.0e-7;  // s

@@ -233,7 +233,8 @@ const std::map<std::string, KindSample, std::less<>> kind_samples = {
 }  // namespace
 
 // Mesh kinds are one registry, the variant setup::MeshShape (scene.hpp): the reader offers its names,
-// in its order, and reads each kind into its own alternative, which build_simulation generates.
+// in its order, and reads each kind into its own alternative, which build_simulation generates, with
+// the position map that every kind accepts.
 TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, builds and names its sides",
           "[setup][mesh]") {
   std::vector<std::string> names;
@@ -263,5 +264,17 @@ TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, b
     std::vector<std::string> sides;
     for (const auto& [user, generator] : setup::side_names(mesh, GeometryKind::axisymmetric)) sides.push_back(user);
     CHECK(sides == sample->second.sides);
+
+    // The key every kind shares: "map" moves every generated node (here by 0.01 m along z).
+    std::string mapped = sample->second.block;
+    mapped.insert(1, R"( "map": ["z + 0.01", "r"],)");
+    const io::Scenario moved = io::parse_scenario(one_body(mapped), "test.json");
+    const NodeFields& before = scenario.setup.mesh.nodes;
+    const NodeFields& after = moved.setup.mesh.nodes;
+    REQUIRE(after.size() == before.size());
+    for (Index n = 0; n < before.size(); ++n) {
+      CHECK(after.x[n] == before.x[n] + 0.01);
+      CHECK(after.y[n] == before.y[n]);
+    }
   }
 }

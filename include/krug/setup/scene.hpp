@@ -65,7 +65,7 @@ using MeshShape = std::variant<RectangleMesh, SectorMesh, NosedCylinderMesh>;
 
 struct MeshDescription {
   MeshShape shape;
-  generate::PositionMap map;  // optional, rectangles and sectors: applied to every generated node
+  generate::PositionMap map;  // optional, every kind: applied to every generated node
 };
 
 // The side names a boundary may use for this mesh, in the generator's terms (user name -> generator
