@@ -12,6 +12,9 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -54,6 +57,31 @@ template <class Document>
 Document parse_document(const std::string& text, const std::string& origin);
 // The shape check of parse_document alone (text that is not JSON passes: the parser reports it).
 void check_document_shape(const std::string& text, const std::string& origin);
+
+// A registry that is a std::variant of kinds, each with its `name` (equations of state, strength
+// models, failure laws, mesh kinds): the names in the variant's order, for `JsonObject::choice`, and
+// the alternative of a chosen name, built by `make(std::type_identity<Kind>{})`. A reader of such a
+// registry is one generic function; a new kind is a line in its variant and the kind's own reading.
+template <class Variant>
+std::vector<std::string> alternative_names() {
+  std::vector<std::string> names;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (names.emplace_back(std::variant_alternative_t<I, Variant>::name), ...);
+  }(std::make_index_sequence<std::variant_size_v<Variant>>{});
+  return names;
+}
+
+template <class Variant, class Make>
+Variant make_alternative(std::string_view chosen, Make&& make) {
+  Variant result;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (void)((chosen == std::variant_alternative_t<I, Variant>::name
+                ? (result = make(std::type_identity<std::variant_alternative_t<I, Variant>>{}), true)
+                : false) ||
+           ...);
+  }(std::make_index_sequence<std::variant_size_v<Variant>>{});
+  return result;
+}
 
 class JsonObject {
  public:

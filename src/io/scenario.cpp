@@ -84,14 +84,7 @@ Model read_model_parameters(JsonObject& spec, double reference_density, const St
 template <class Variant>
 Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, double reference_density,
                    const Strength* strength = nullptr, bool echo_fallback = true) {
-  constexpr std::size_t count = std::variant_size_v<Variant>;
-  const std::vector<std::string> names = [] {
-    std::vector<std::string> list;
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (list.emplace_back(std::variant_alternative_t<I, Variant>::name), ...);
-    }(std::make_index_sequence<count>{});
-    return list;
-  }();
+  const std::vector<std::string> names = alternative_names<Variant>();
   std::string chosen;
   if (fallback && !echo_fallback && !spec.has("model")) {
     spec.optional_raw("model");  // named among the valid keys; the default is not written out
@@ -99,16 +92,9 @@ Variant read_model(JsonObject& spec, std::optional<std::string_view> fallback, d
   } else {
     chosen = fallback ? spec.choice("model", names, *fallback) : spec.choice("model", names);
   }
-  Variant result;
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (void)((chosen == std::variant_alternative_t<I, Variant>::name
-                ? (result = read_model_parameters<std::variant_alternative_t<I, Variant>>(spec, reference_density,
-                                                                                          strength),
-                   true)
-                : false) ||
-           ...);
-  }(std::make_index_sequence<count>{});
-  return result;
+  return make_alternative<Variant>(chosen, [&]<class Model>(std::type_identity<Model>) {
+    return read_model_parameters<Model>(spec, reference_density, strength);
+  });
 }
 
 // An erosion block {"altitude_ratio", "plastic_strain"}; keys not given keep the values of `base`.
@@ -270,12 +256,7 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Failu
   // lies in (-1, 1/2) for any positive moduli; a negative one almost always means a unit slip (GPa vs Pa)
   // in one of them, so it is refused here with both values.
   const double shear_modulus = m.shear_modulus();
-  const double bulk_modulus = std::visit([](const auto& e) {
-    using E = std::decay_t<decltype(e)>;
-    if constexpr (std::is_same_v<E, LinearBulk>) return e.bulk_modulus;
-    else if constexpr (std::is_same_v<E, MieGruneisen>) return e.reference_density * e.bulk_sound_speed * e.bulk_sound_speed;
-    else return 0.0;
-  }, m.eos);
+  const double bulk_modulus = reference_bulk_modulus(m.eos);  // each model's answer; 0 for a gas
   if (shear_modulus > 0.0 && bulk_modulus > 0.0) {
     const double poisson = (3.0 * bulk_modulus - 2.0 * shear_modulus) / (2.0 * (3.0 * bulk_modulus + shear_modulus));
     if (poisson < 0.0) {
@@ -284,8 +265,9 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Failu
                                                  bulk_modulus, poisson));
     }
   }
-  // A solid (an eos with a bulk modulus, or a strength model): the ranges of real solids, from foams
-  // and polymers to tungsten (gases are often non-dimensional, and are not checked).
+  // A solid or a liquid (an eos with a bulk modulus at its reference state, or a strength model): the
+  // ranges of real solids, from foams and polymers to tungsten (gases are often non-dimensional, and are
+  // not checked).
   const bool solid = bulk_modulus > 0.0 || shear_modulus > 0.0;
   if (solid && !allow.allows("density") && !(m.reference_density >= 100.0 && m.reference_density <= 25'000.0)) {
     throw InputError(fmt::format("{}: {:g} kg/m^3 is outside the 100 to 25 000 kg/m^3 of solids (g/cm^3 for kg/m^3?){}",

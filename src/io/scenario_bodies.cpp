@@ -58,9 +58,89 @@ std::vector<ScalarField> read_field_pair(JsonObject& spec, std::string_view key,
 
 }  // namespace
 
+namespace {
+
+// What a mesh kind's reader needs beside its keys.
+struct MeshContext {
+  GeometryKind geometry;
+  bool allow_radian_angles;  // sector angles that look like radians are allowed ("allow_unusual")
+};
+
+// The mesh kinds' readers, one overload per alternative of setup::MeshShape: each reads its kind's keys
+// from the mesh block (the generic read_mesh has read "type" and "map").
+setup::RectangleMesh read_mesh_kind(std::type_identity<setup::RectangleMesh>, JsonObject& spec, const MeshContext& context) {
+  const GeometryKind geometry = context.geometry;
+  const AxisNames names = axis_names(geometry);
+  // The other geometry's axis names are a likely slip: name the key that was written.
+  const AxisNames other = axis_names(geometry == GeometryKind::planar ? GeometryKind::axisymmetric : GeometryKind::planar);
+  for (const std::string& written : {other.first, other.second}) {
+    if (spec.has(written) && written != names.first && written != names.second) {
+      throw InputError(fmt::format("{}: {} rectangle names its axes \"{}\" and \"{}\"; found \"{}\" (an axis of {} "
+                                   "geometry)",
+                                   spec.path_of(written), geometry == GeometryKind::planar ? "a planar" : "an axisymmetric",
+                                   names.first, names.second, written,
+                                   geometry == GeometryKind::planar ? "axisymmetric" : "planar"));
+    }
+  }
+  setup::RectangleMesh rectangle;
+  rectangle.first = read_axis(spec.object(names.first));
+  rectangle.second = read_axis(spec.object(names.second));
+  return rectangle;
+}
+
+// A projectile or rod along the axis: flat, hemispherical or tangent-ogive nose, O-grid at the nose.
+setup::NosedCylinderMesh read_mesh_kind(std::type_identity<setup::NosedCylinderMesh>, JsonObject& spec,
+                                        const MeshContext& context) {
+  const AxisNames names = axis_names(context.geometry);
+  generate::NosedCylinderParams p;
+  p.radius = spec.number("radius", Range::positive());
+  p.length = spec.number("length", Range::positive());
+  const std::string nose = spec.choice("nose", {"flat", "hemispherical", "ogive"}, "hemispherical");
+  p.nose = nose == "flat" ? generate::NoseShape::flat
+           : nose == "ogive" ? generate::NoseShape::ogive : generate::NoseShape::hemispherical;
+  p.nose_length = spec.number("nose_length", 0.0, Range::non_negative());
+  p.ogive_calibers = spec.number("ogive_calibers", 0.0, Range::non_negative());
+  p.tip_position = spec.number("tip", 0.0);
+  const std::string direction = spec.choice("points", {"+" + names.first, "-" + names.first}, "+" + names.first);
+  p.direction = direction[0] == '+' ? 1 : -1;
+  p.radial_zones = static_cast<int>(spec.integer("radial_zones", 10, 1, 100000));
+  p.core_zones = static_cast<int>(spec.integer("core_zones", 0, 0, 100000));
+  p.nose_zones = static_cast<int>(spec.integer("nose_zones", 0, 0, 100000));
+  p.shank_zones = static_cast<int>(spec.integer("shank_zones", 0, 0, 1000000));
+  p.shank_ratio = spec.number("shank_ratio", 1.0, Range{0.0, 100.0, true});
+  return setup::NosedCylinderMesh{p};
+}
+
+setup::SectorMesh read_mesh_kind(std::type_identity<setup::SectorMesh>, JsonObject& spec, const MeshContext& context) {
+  setup::SectorMesh sector;
+  sector.radii = read_axis(spec.object("radius"));
+  sector.angles = read_axis(spec.object("angle"), std::numbers::pi / 180.0);
+  if (sector.radii.front() < 0.0) spec.fail_here("radius.from must be >= 0");
+  const double from = sector.angles.front() * 180.0 / std::numbers::pi, to = sector.angles.back() * 180.0 / std::numbers::pi;
+  for (const double degrees : {from, to}) {
+    // pi/2, pi, 3 pi/2 or 2 pi written where degrees are expected: almost surely radians.
+    const double quarters = degrees / (0.5 * std::numbers::pi);
+    const bool looks_like_radians = degrees != 0.0 && std::abs(quarters - std::round(quarters)) < 1e-4 &&
+                                    std::abs(quarters) <= 4.0 + 1e-9;
+    if (looks_like_radians && !context.allow_radian_angles) {
+      throw InputError(fmt::format("{}: {:g} looks like an angle in radians; angles are in degrees (90, 180, 360); if "
+                                   "this is deliberate, add \"angle\" to the top-level \"allow_unusual\" list",
+                                   spec.path_of("angle"), degrees));
+    }
+  }
+  if (from < -360.0 || to > 360.0 || to - from > 360.0 * (1.0 + 1e-12)) {
+    throw InputError(fmt::format("{}: the angles run from {:g} to {:g} degrees; expected a span of at most 360 degrees "
+                                 "within [-360, 360] (angles are in degrees)",
+                                 spec.path_of("angle"), from, to));
+  }
+  return sector;
+}
+
+}  // namespace
+
 setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry, bool allow_radian_angles) {
   const AxisNames names = axis_names(geometry);
-  const std::string type = spec.choice("type", {"rectangle", "sector", "nosed_cylinder"});
+  const std::string type = spec.choice("type", alternative_names<setup::MeshShape>());
   setup::MeshDescription result;
   if (spec.has("map")) {
     auto fields = read_field_pair(spec, "map", names, "an array of two expressions [new first, new second]");
@@ -68,65 +148,10 @@ setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry, bool al
   } else {
     spec.optional_raw("map");
   }
-  if (type == "rectangle") {
-    // The other geometry's axis names are a likely slip: name the key that was written.
-    const AxisNames other = axis_names(geometry == GeometryKind::planar ? GeometryKind::axisymmetric : GeometryKind::planar);
-    for (const std::string& written : {other.first, other.second}) {
-      if (spec.has(written) && written != names.first && written != names.second) {
-        throw InputError(fmt::format("{}: {} rectangle names its axes \"{}\" and \"{}\"; found \"{}\" (an axis of {} "
-                                     "geometry)",
-                                     spec.path_of(written), geometry == GeometryKind::planar ? "a planar" : "an axisymmetric",
-                                     names.first, names.second, written,
-                                     geometry == GeometryKind::planar ? "axisymmetric" : "planar"));
-      }
-    }
-    setup::RectangleMesh rectangle;
-    rectangle.first = read_axis(spec.object(names.first));
-    rectangle.second = read_axis(spec.object(names.second));
-    result.shape = std::move(rectangle);
-  } else if (type == "nosed_cylinder") {
-    // A projectile or rod along the axis: flat, hemispherical or tangent-ogive nose, O-grid at the nose.
-    generate::NosedCylinderParams p;
-    p.radius = spec.number("radius", Range::positive());
-    p.length = spec.number("length", Range::positive());
-    const std::string nose = spec.choice("nose", {"flat", "hemispherical", "ogive"}, "hemispherical");
-    p.nose = nose == "flat" ? generate::NoseShape::flat
-             : nose == "ogive" ? generate::NoseShape::ogive : generate::NoseShape::hemispherical;
-    p.nose_length = spec.number("nose_length", 0.0, Range::non_negative());
-    p.ogive_calibers = spec.number("ogive_calibers", 0.0, Range::non_negative());
-    p.tip_position = spec.number("tip", 0.0);
-    const std::string direction = spec.choice("points", {"+" + names.first, "-" + names.first}, "+" + names.first);
-    p.direction = direction[0] == '+' ? 1 : -1;
-    p.radial_zones = static_cast<int>(spec.integer("radial_zones", 10, 1, 100000));
-    p.core_zones = static_cast<int>(spec.integer("core_zones", 0, 0, 100000));
-    p.nose_zones = static_cast<int>(spec.integer("nose_zones", 0, 0, 100000));
-    p.shank_zones = static_cast<int>(spec.integer("shank_zones", 0, 0, 1000000));
-    p.shank_ratio = spec.number("shank_ratio", 1.0, Range{0.0, 100.0, true});
-    result.shape = setup::NosedCylinderMesh{p};
-  } else {
-    setup::SectorMesh sector;
-    sector.radii = read_axis(spec.object("radius"));
-    sector.angles = read_axis(spec.object("angle"), std::numbers::pi / 180.0);
-    if (sector.radii.front() < 0.0) spec.fail_here("radius.from must be >= 0");
-    const double from = sector.angles.front() * 180.0 / std::numbers::pi, to = sector.angles.back() * 180.0 / std::numbers::pi;
-    for (const double degrees : {from, to}) {
-      // pi/2, pi, 3 pi/2 or 2 pi written where degrees are expected: almost surely radians.
-      const double quarters = degrees / (0.5 * std::numbers::pi);
-      const bool looks_like_radians = degrees != 0.0 && std::abs(quarters - std::round(quarters)) < 1e-4 &&
-                                      std::abs(quarters) <= 4.0 + 1e-9;
-      if (looks_like_radians && !allow_radian_angles) {
-        throw InputError(fmt::format("{}: {:g} looks like an angle in radians; angles are in degrees (90, 180, 360); if "
-                                     "this is deliberate, add \"angle\" to the top-level \"allow_unusual\" list",
-                                     spec.path_of("angle"), degrees));
-      }
-    }
-    if (from < -360.0 || to > 360.0 || to - from > 360.0 * (1.0 + 1e-12)) {
-      throw InputError(fmt::format("{}: the angles run from {:g} to {:g} degrees; expected a span of at most 360 degrees "
-                                   "within [-360, 360] (angles are in degrees)",
-                                   spec.path_of("angle"), from, to));
-    }
-    result.shape = std::move(sector);
-  }
+  const MeshContext context{geometry, allow_radian_angles};
+  result.shape = make_alternative<setup::MeshShape>(type, [&]<class Kind>(std::type_identity<Kind> kind) {
+    return setup::MeshShape{read_mesh_kind(kind, spec, context)};
+  });
   spec.finish();
   return result;
 }

@@ -4,6 +4,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -30,32 +31,72 @@ void check_zone_count(long zones, long before, long limit, const std::string& wh
   }
 }
 
-generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, long zone_limit,
-                              const std::string& where) {
-  const long before = mesh.zones.size();
-  if (const auto* rectangle = std::get_if<RectangleMesh>(&description.shape)) {
-    check_zone_count(static_cast<long>(rectangle->first.size() - 1) * static_cast<long>(rectangle->second.size() - 1),
-                     before, zone_limit, where);
-    return generate::rectangle(mesh, rectangle->first, rectangle->second, body, description.map);
+// The mesh kinds (MeshShape in scene.hpp), one overload each: the kind's zone count checked against the
+// scene's limit before anything is generated, then its generator. `before`: the zones already in the mesh.
+generate::Patch generate_kind(const RectangleMesh& rectangle, const generate::PositionMap& map, Mesh& mesh, Index body,
+                              long before, long zone_limit, const std::string& where) {
+  check_zone_count(static_cast<long>(rectangle.first.size() - 1) * static_cast<long>(rectangle.second.size() - 1),
+                   before, zone_limit, where);
+  return generate::rectangle(mesh, rectangle.first, rectangle.second, body, map);
+}
+
+generate::Patch generate_kind(const SectorMesh& sector, const generate::PositionMap& map, Mesh& mesh, Index body,
+                              long before, long zone_limit, const std::string& where) {
+  if (sector.radii.front() < 0.0) fail(where, "radius.from must be >= 0");
+  if (sector.angles.back() - sector.angles.front() > 2.0 * std::numbers::pi * (1.0 + 1e-12)) {
+    fail(where, fmt::format("the sector spans {:g} radians; at most 2 pi", sector.angles.back() - sector.angles.front()));
   }
-  if (const auto* sector = std::get_if<SectorMesh>(&description.shape)) {
-    if (sector->radii.front() < 0.0) fail(where, "radius.from must be >= 0");
-    if (sector->angles.back() - sector->angles.front() > 2.0 * std::numbers::pi * (1.0 + 1e-12)) {
-      fail(where, fmt::format("the sector spans {:g} radians; at most 2 pi", sector->angles.back() - sector->angles.front()));
-    }
-    check_zone_count(static_cast<long>(sector->radii.size() - 1) * static_cast<long>(sector->angles.size() - 1), before,
-                     zone_limit, where);
-    return generate::sector(mesh, sector->radii, sector->angles, body, description.map);
-  }
-  const generate::NosedCylinderParams& p = std::get<NosedCylinderMesh>(description.shape).params;
+  check_zone_count(static_cast<long>(sector.radii.size() - 1) * static_cast<long>(sector.angles.size() - 1), before,
+                   zone_limit, where);
+  return generate::sector(mesh, sector.radii, sector.angles, body, map);
+}
+
+generate::Patch generate_kind(const NosedCylinderMesh& cylinder, const generate::PositionMap& map, Mesh& mesh,
+                              Index body, long before, long zone_limit, const std::string& where) {
+  const generate::NosedCylinderParams& p = cylinder.params;
   // An upper bound of the generator's zone count: every column of the O-grid and shank.
   const long across = static_cast<long>(p.radial_zones) + p.core_zones + p.nose_zones;
   check_zone_count(across * (across + p.shank_zones), before, zone_limit, where, "up to ");
+  generate::Patch patch;
   try {
-    return generate::nosed_cylinder(mesh, p, body);
+    patch = generate::nosed_cylinder(mesh, p, body);
   } catch (const InputError& e) {
     fail(where, e.what());  // the generator's reason, with the body's name
   }
+  // The map moves every generated node, as the other kinds' generators apply it.
+  if (map) {
+    for (Index n = patch.node_begin; n < patch.node_end; ++n) {
+      const Vec2 moved = map(mesh.nodes.position(n));
+      mesh.nodes.x[n] = moved.x;
+      mesh.nodes.y[n] = moved.y;
+    }
+  }
+  return patch;
+}
+
+generate::Patch generate_mesh(const MeshDescription& description, Mesh& mesh, Index body, long zone_limit,
+                              const std::string& where) {
+  const long before = mesh.zones.size();
+  return std::visit([&](const auto& kind) { return generate_kind(kind, description.map, mesh, body, before, zone_limit, where); },
+                    description.shape);
+}
+
+// The side names of each mesh kind (user name -> generator side name).
+std::map<std::string, std::string> kind_sides(const RectangleMesh&, GeometryKind geometry) {
+  const std::string first(axis_name(geometry, 0)), second(axis_name(geometry, 1));
+  return {{first + "_min", "i_min"}, {first + "_max", "i_max"}, {second + "_min", "j_min"}, {second + "_max", "j_max"}};
+}
+
+std::map<std::string, std::string> kind_sides(const SectorMesh& sector, GeometryKind) {
+  std::map<std::string, std::string> sides = {{"outer", "i_max"}, {"start", "j_min"}, {"end", "j_max"}};
+  if (sector.radii.empty() || sector.radii.front() != 0.0) sides["inner"] = "i_min";
+  return sides;
+}
+
+std::map<std::string, std::string> kind_sides(const NosedCylinderMesh&, GeometryKind) {
+  std::map<std::string, std::string> sides;
+  for (const char* side : {"axis", "nose", "side", "rear"}) sides[side] = side;
+  return sides;
 }
 
 void set_initial_fields(const InitialState& initial, const Body& body, GeometryKind geometry, Mesh& mesh,
@@ -243,16 +284,9 @@ void check_held_contact(const SimulationSetup& setup, const std::map<Index, Node
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> side_names(const MeshDescription& mesh, GeometryKind geometry) {
-  std::map<std::string, std::string> sides;  // sorted by the user's name
-  if (std::holds_alternative<RectangleMesh>(mesh.shape)) {
-    const std::string first(axis_name(geometry, 0)), second(axis_name(geometry, 1));
-    sides = {{first + "_min", "i_min"}, {first + "_max", "i_max"}, {second + "_min", "j_min"}, {second + "_max", "j_max"}};
-  } else if (const auto* sector = std::get_if<SectorMesh>(&mesh.shape)) {
-    sides = {{"outer", "i_max"}, {"start", "j_min"}, {"end", "j_max"}};
-    if (sector->radii.empty() || sector->radii.front() != 0.0) sides["inner"] = "i_min";
-  } else {
-    for (const char* side : {"axis", "nose", "side", "rear"}) sides[side] = side;
-  }
+  // sorted by the user's name
+  const std::map<std::string, std::string> sides =
+      std::visit([&](const auto& kind) { return kind_sides(kind, geometry); }, mesh.shape);
   return {sides.begin(), sides.end()};
 }
 

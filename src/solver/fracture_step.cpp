@@ -126,7 +126,7 @@ void Simulation::convert_fractured_zones() {
       state_.controlling_zone = z;
     }
   }
-  measure_ledger();
+  measure_ledger(state_.mesh, state_.particles, state_.ledger);
 }
 
 void Simulation::convert_zone(Index z, ConversionRule rule) {

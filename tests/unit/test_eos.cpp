@@ -196,3 +196,22 @@ TEST_CASE("Eos variant and Material dispatch reach Mie-Gruneisen", "[eos]") {
   const std::string_view name = std::visit([](const auto& eos) { return eos.name; }, copper.eos);
   CHECK(name == "mie_gruneisen");
 }
+
+// The scenario reader's plausibility checks (docs/scenario-format.md) ask each model for its bulk
+// modulus at the reference state; a model without the member does not compile (the concept in eos.hpp).
+TEST_CASE("each equation of state answers its reference bulk modulus", "[eos][plausibility]") {
+  STATIC_REQUIRE(krug::all_equations_of_state<krug::Eos>);
+  // A gas: 0, not checked as condensed matter.
+  CHECK(krug::IdealGas{1.4}.reference_bulk_modulus() == 0.0);
+  CHECK(krug::StiffenedGas{1.4, 0.0}.reference_bulk_modulus() == 0.0);  // p_inf = 0: the ideal gas
+  // Water as a stiffened gas (Saurel & Abgrall 1999): gamma p_inf = 4.4 x 6e8 = 2.64e9 Pa, so that
+  // sqrt(K / rho0) = 1 625 m/s at 1 000 kg/m^3 (the sound speed eos.hpp quotes).
+  CHECK(krug::StiffenedGas{4.4, 6.0e8}.reference_bulk_modulus() == Approx(2.64e9).epsilon(1e-15));
+  CHECK(std::sqrt(krug::StiffenedGas{4.4, 6.0e8}.reference_bulk_modulus() / 1000.0) == Approx(1624.8).epsilon(1e-4));
+  CHECK(krug::LinearBulk{7.3e10, 2700.0}.reference_bulk_modulus() == 7.3e10);
+  // E3 copper: rho0 c0^2 = 8930 x 3940^2 = 1.3862e11 Pa.
+  CHECK(e3_copper().reference_bulk_modulus() == Approx(1.3862e11).epsilon(1e-4));
+  // Through the variant, each alternative's own answer.
+  CHECK(krug::reference_bulk_modulus(krug::Eos{e3_copper()}) == e3_copper().reference_bulk_modulus());
+  CHECK(krug::reference_bulk_modulus(krug::Eos{krug::IdealGas{1.4}}) == 0.0);
+}

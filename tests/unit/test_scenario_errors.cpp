@@ -364,6 +364,30 @@ TEST_CASE("unit slips that stay consistent are caught by plausibility checks, an
     CHECK_THAT(e, Catch::StartsWith("bodies[0]: body \"left\" starts at 8e+05 m/s"));
     CHECK_THAT(e, Catch::Contains("faster than 1e5 m/s"));
   }
+  SECTION("every equation of state with a bulk modulus is checked, not a list of two") {
+    // The same unit slip, the density in g/cm^3, under each model that answers a bulk modulus
+    // (reference_bulk_modulus in eos.hpp): Mie-Gruneisen copper (E3 constants) with the elastic strength,
+    // and water as a stiffened gas (Saurel & Abgrall 1999), which has no strength model to make it a
+    // solid otherwise and was not checked before the models answered.
+    const std::string copper = replaced(base, "{ \"model\": \"linear\", \"bulk_modulus\": 7.3e10 }",
+                                        "{ \"model\": \"mie_gruneisen\", \"bulk_sound_speed\": 3940, "
+                                        "\"hugoniot_slope\": 1.49, \"gruneisen\": 2.0 }");
+    CHECK(error_of(replaced(copper, "\"density\": 2700", "\"density\": 8930")) == "(no error)");
+    // Mie-Gruneisen's K = rho0 c0^2 takes the slipped density too: 8.93 x 3940^2 = 1.386e8 Pa against the
+    // shear modulus 2.6e10 Pa gives a Poisson ratio of -0.976, the first check to fail.
+    CHECK_THAT(error_of(replaced(copper, "\"density\": 2700", "\"density\": 8.93")),
+               Catch::Contains("the bulk modulus 1.386e+08 Pa of the eos, a Poisson ratio in [0, 0.5); this one gives -0.976"));
+    const std::string water =
+        replaced(replaced(replaced(base, "{ \"model\": \"linear\", \"bulk_modulus\": 7.3e10 }",
+                                   "{ \"model\": \"stiffened_gas\", \"gamma\": 4.4, \"stiffness_pressure\": 6e8 }"),
+                          ",\n                             \"strength\": { \"model\": \"elastic\", \"shear_modulus\": 2.6e10 }", ""),
+                 "\"density\": 2700", "\"density\": 1000");
+    CHECK(error_of(water) == "(no error)");
+    CHECK_THAT(error_of(replaced(water, "\"density\": 1000", "\"density\": 1")),
+               Catch::StartsWith("materials.al.density: 1 kg/m^3 is outside"));
+    // A stiffened gas with p_inf = 0 is the ideal gas: not checked.
+    CHECK(error_of(replaced(replaced(water, "\"density\": 1000", "\"density\": 1"), "6e8", "0")) == "(no error)");
+  }
   SECTION("an unknown check name") {
     CHECK_THAT(error_of(replaced(base, "\"end_time\"", "\"allow_unusual\": [\"everything\"], \"end_time\"")),
                Catch::StartsWith("allow_unusual: expected an array of check names"));

@@ -6,7 +6,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "krug/core/error.hpp"
@@ -201,5 +204,77 @@ TEST_CASE("setup errors name the body: overlap, side, density, zones, material",
     setup::SceneDescription scene = good;
     scene.bodies[1].material = 3;
     CHECK(error_of(scene).rfind("bodies[1]: material index 3", 0) == 0);
+  }
+}
+
+namespace {
+
+// A scenario of one gas body in RZ with this mesh block.
+std::string one_body(const std::string& mesh) {
+  return R"({ "geometry": "axisymmetric", "end_time": 1e-3,
+    "materials": { "gas": { "density": 1.0, "eos": { "model": "ideal_gas", "gamma": 1.4 } } },
+    "bodies": [ { "name": "body", "material": "gas", "mesh": )" + mesh + R"( } ] })";
+}
+
+// A sample mesh block of every kind the registry holds, with the sides the kind names (setup::side_names).
+struct KindSample {
+  std::string block;
+  std::vector<std::string> sides;
+};
+const std::map<std::string, KindSample, std::less<>> kind_samples = {
+    {"rectangle", {R"({ "type": "rectangle", "z": { "from": 0, "to": 1, "zones": 2 }, "r": { "from": 0, "to": 1, "zones": 2 } })",
+                   {"r_max", "r_min", "z_max", "z_min"}}},
+    {"sector", {R"({ "type": "sector", "radius": { "from": 0, "to": 1, "zones": 2 }, "angle": { "from": 0, "to": 90, "zones": 2 } })",
+                {"end", "outer", "start"}}},
+    {"nosed_cylinder", {R"({ "type": "nosed_cylinder", "radius": 0.005, "length": 0.02, "radial_zones": 4 })",
+                        {"axis", "nose", "rear", "side"}}},
+};
+
+}  // namespace
+
+// Mesh kinds are one registry, the variant setup::MeshShape (scene.hpp): the reader offers its names,
+// in its order, and reads each kind into its own alternative, which build_simulation generates, with
+// the position map that every kind accepts.
+TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, builds and names its sides",
+          "[setup][mesh]") {
+  std::vector<std::string> names;
+  std::string listed;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (names.emplace_back(std::variant_alternative_t<I, setup::MeshShape>::name), ...);
+  }(std::make_index_sequence<std::variant_size_v<setup::MeshShape>>{});
+  for (const std::string& name : names) listed += (listed.empty() ? "\"" : ", \"") + name + "\"";
+  CHECK(listed == R"("rectangle", "sector", "nosed_cylinder")");
+
+  // An unknown kind: the message lists the registry's names.
+  try {
+    (void)io::parse_scenario(one_body(R"({ "type": "hexagon" })"), "test.json");
+    FAIL("an unknown mesh type was accepted");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == "bodies[0].mesh.type: unknown name \"hexagon\"; expected one of " + listed);
+  }
+
+  for (std::size_t index = 0; index < names.size(); ++index) {
+    INFO("mesh kind " << names[index]);
+    const auto sample = kind_samples.find(names[index]);
+    REQUIRE(sample != kind_samples.end());  // a new kind needs its sample here
+    const io::Scenario scenario = io::parse_scenario(one_body(sample->second.block), "test.json");
+    const setup::MeshDescription& mesh = scenario.scene.bodies.at(0).mesh;
+    CHECK(mesh.shape.index() == index);  // read into its own alternative
+    CHECK(scenario.setup.mesh.zones.size() > 0);  // and generated
+    std::vector<std::string> sides;
+    for (const auto& [user, generator] : setup::side_names(mesh, GeometryKind::axisymmetric)) sides.push_back(user);
+    CHECK(sides == sample->second.sides);
+
+    // The key every kind shares: "map" moves every generated node (here by 0.01 m along z).
+    std::string mapped = sample->second.block;
+    mapped.insert(1, R"( "map": ["z + 0.01", "r"],)");
+    const io::Scenario moved = io::parse_scenario(one_body(mapped), "test.json");
+    const NodeFields& before = scenario.setup.mesh.nodes;
+    const NodeFields& after = moved.setup.mesh.nodes;
+    REQUIRE(after.size() == before.size());
+    for (Index n = 0; n < before.size(); ++n) {
+      CHECK(after.x[n] == before.x[n] + 0.01);
+      CHECK(after.y[n] == before.y[n]);
+    }
   }
 }

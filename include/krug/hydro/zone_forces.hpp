@@ -56,7 +56,7 @@ struct SharedEdgeLimiters {
   double* value = nullptr;        // 4 per zone: psi of the compressing edges of the current step
 };
 
-// The area-weighted RZ form's per-step arrays (Simulation::update_area_weighted_scale); unused otherwise.
+// The area-weighted RZ form's per-step arrays (area_weighted_scale in solver/hydro_step.hpp); unused otherwise.
 struct AreaWeightedArrays {
   const double* scale = nullptr;    // per node: s_p = M_p / M^A_p, the factor of the node's forces
   const double* booking = nullptr;  // per node: the weight of its viscous and hourglass work in the zone's

@@ -6,6 +6,7 @@
 //   shock_slope: the coefficient of the quadratic artificial viscosity, (gamma + 1)/4 for an ideal gas
 //                (strong-shock limit, Caramana, Shashkov & Whalen 1998) and s/2 for a linear Us-up fit.
 #include <algorithm>
+#include <concepts>
 #include <limits>
 #include <string_view>
 #include <variant>
@@ -24,6 +25,8 @@ struct IdealGas {
     return rho > 0.0 ? std::max(gamma * p / rho, 0.0) : 0.0;
   }
   double shock_slope() const { return 0.25 * (gamma + 1.0); }
+  // A gas: no bulk modulus of condensed matter (its constants are often non-dimensional).
+  double reference_bulk_modulus() const { return 0.0; }
 };
 
 // Stiffened gas (Harlow & Amsden 1971; Saurel & Abgrall, J. Comput. Phys. 150, 1999): a liquid or a
@@ -41,6 +44,8 @@ struct StiffenedGas {
     return rho > 0.0 ? std::max(gamma * (p + stiffness_pressure) / rho, 0.0) : 0.0;
   }
   double shock_slope() const { return 0.25 * (gamma + 1.0); }
+  // rho c^2 at p = 0, gamma p_inf: a liquid's (2.64e9 Pa for water); 0 for p_inf = 0, the ideal gas.
+  double reference_bulk_modulus() const { return gamma * stiffness_pressure; }
 };
 
 // Linear bulk modulus (acoustic solid or liquid): p = K (rho/rho0 - 1), independent of e.
@@ -54,6 +59,7 @@ struct LinearBulk {
     return bulk_modulus / reference_density;
   }
   double shock_slope() const { return 0.5; }
+  double reference_bulk_modulus() const { return bulk_modulus; }
 };
 
 // Mie–Grüneisen solid referenced to the principal shock Hugoniot of a linear Us–up fit,
@@ -138,6 +144,8 @@ struct MieGruneisen {
     return std::max(isoenergetic + p * reference_density * gruneisen / (rho * rho), 0.0);
   }
   double shock_slope() const { return 0.5 * hugoniot_slope; }
+  // rho0 c0^2, the slope dp/dmu of the reference curve at rho0.
+  double reference_bulk_modulus() const { return reference_density * bulk_sound_speed * bulk_sound_speed; }
 };
 
 // Scenario parameters (parameters.hpp); reference_density comes from the material's density.
@@ -159,5 +167,31 @@ constexpr auto parameters(std::type_identity<MieGruneisen>) {
 
 // The equations of state a scenario may name (`eos.model`: each model's `name`), in this order.
 using Eos = std::variant<IdealGas, LinearBulk, MieGruneisen, StiffenedGas>;
+
+// What every alternative of Eos answers. reference_bulk_modulus() (Pa) is K0 at the reference state of
+// condensed matter (a solid or a liquid), which the scenario reader's plausibility checks bound by the
+// ranges of real materials (density, sound speed, Poisson ratio: docs/scenario-format.md); 0 says the
+// model describes a gas, whose constants are often non-dimensional and are not checked. A model without
+// the member stops the build here, so that no equation of state is left out of the checks unawares.
+template <class Model>
+concept EquationOfState = requires(const Model& model, double value) {
+  { Model::name } -> std::convertible_to<std::string_view>;
+  { model.pressure(value, value) } -> std::same_as<double>;
+  { model.sound_speed_squared(value, value, value) } -> std::same_as<double>;
+  { model.shock_slope() } -> std::same_as<double>;
+  { model.reference_bulk_modulus() } -> std::same_as<double>;
+};
+
+template <class Variant>
+inline constexpr bool all_equations_of_state = false;
+template <class... Models>
+inline constexpr bool all_equations_of_state<std::variant<Models...>> = (EquationOfState<Models> && ...);
+static_assert(all_equations_of_state<Eos>,
+              "every alternative of Eos must answer the members of EquationOfState (reference_bulk_modulus among them)");
+
+// K0 of the material's equation of state (Pa; 0 for a gas), asked of the model.
+inline double reference_bulk_modulus(const Eos& eos) {
+  return std::visit([](const auto& model) { return model.reference_bulk_modulus(); }, eos);
+}
 
 }  // namespace krug

@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -32,26 +33,39 @@ inline constexpr double max_coordinate = 1e4;
 // A field over a body: its value at a point (first, second coordinate in m).
 using PointFunction = std::function<double(double first, double second)>;
 
+// The mesh kinds, each a generator's parameters with its scenario `name` (`mesh.type`). The registry is
+// the variant MeshShape: the scenario reader offers its names and reads the chosen kind's keys (an
+// overload of read_mesh_kind in src/io/scenario_bodies.cpp), and build_simulation generates it and names
+// its sides (overloads of generate_kind and kind_sides in src/setup/build.cpp). A kind without one of
+// them stops the build. A new kind is its struct here, its line in MeshShape, those three overloads, its
+// branch in docs/scenario.schema.json and its row in docs/scenario-format.md.
+
 // A rectangle with grid lines at these coordinates (m), i along the first axis, j along the second.
 // Sides: "<first>_min", "<first>_max", "<second>_min", "<second>_max" (x/y planar, z/r axisymmetric).
 struct RectangleMesh {
+  static constexpr std::string_view name = "rectangle";
   std::vector<double> first, second;
 };
 
 // An annular sector: radii (m, increasing; a first radius of 0 puts one node at the centre) and angles
 // (radians, increasing). Sides: "inner" (absent when the first radius is 0), "outer", "start", "end".
 struct SectorMesh {
+  static constexpr std::string_view name = "sector";
   std::vector<double> radii, angles;
 };
 
 // A projectile or rod along the axis (generate::nosed_cylinder). Sides: "axis", "nose", "side", "rear".
 struct NosedCylinderMesh {
+  static constexpr std::string_view name = "nosed_cylinder";
   generate::NosedCylinderParams params;
 };
 
+// The mesh kinds a scene may use, in the order a scenario's error message lists them.
+using MeshShape = std::variant<RectangleMesh, SectorMesh, NosedCylinderMesh>;
+
 struct MeshDescription {
-  std::variant<RectangleMesh, SectorMesh, NosedCylinderMesh> shape;
-  generate::PositionMap map;  // optional, rectangles and sectors: applied to every generated node
+  MeshShape shape;
+  generate::PositionMap map;  // optional, every kind: applied to every generated node
 };
 
 // The side names a boundary may use for this mesh, in the generator's terms (user name -> generator

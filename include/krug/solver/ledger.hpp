@@ -13,6 +13,12 @@
 
 namespace krug {
 
+struct Mesh;
+struct NodeFields;
+struct Particles;
+namespace contact { class ContactSolver; }
+namespace boundary { class Boundary; }
+
 struct EnergyLedger {
   double kinetic = 0.0;     // K at t^{n+1/2}: 1/2 sum M |u|^2 over nodes and particles
   double internal = 0.0;    // IE = sum m e
@@ -55,5 +61,18 @@ struct Ledger {
     return initial_mass > 0.0 ? std::abs(mass - initial_mass) / initial_mass : 0.0;
   }
 };
+
+// The measured lines at t^{n+1/2}: K = 1/2 sum M |u|^2 and the axial momentum of nodes and particles,
+// the largest K so far, and the mass of the active zones and the particles. Reads the mesh and the
+// particles; writes energy.kinetic, axial_momentum, max_kinetic and mass of `ledger`.
+void measure_ledger(const Mesh& mesh, const Particles& particles, Ledger& ledger);
+
+// The contact lines of step 4: W_contact += dt^n R . ubar over the nodes and particles the contact
+// solver's last solve touched (ubar the mid velocity), the overlap line the part of it done by contacts
+// that carry a pre-existing overlap; on a held component the boundary cancels R (Boundary::book_reaction,
+// which books on the boundary lines). Reads the solver, nodes and particles; writes energy.contact,
+// energy.overlap, energy.boundary and axial_boundary_impulse of `ledger`.
+void book_contact_work(const contact::ContactSolver& contact, const NodeFields& nodes, const Particles& particles,
+                       const boundary::Boundary& boundary, double dt_mid, Ledger& ledger);
 
 }  // namespace krug

@@ -12,27 +12,12 @@
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/pieces.hpp"
+#include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/ledger.hpp"
+#include "krug/solver/time_step.hpp"
 
 namespace krug {
-
-struct Body {
-  std::string name;
-  Index material = 0;
-  Index node_begin = 0, node_end = 0;
-  Index zone_begin = 0, zone_end = 0;
-  // Erosion (off by default): an intact zone that collapses or strains past these limits becomes a
-  // particle (mass and momentum exact), counted as eroded mass (fracture::ErosionLimits).
-  double erosion_altitude_ratio = 0.0;
-  double erosion_plastic_strain = fracture::disabled;
-
-  fracture::ErosionLimits erosion() const { return {erosion_altitude_ratio, erosion_plastic_strain}; }
-  void set_erosion(const fracture::ErosionLimits& e) {
-    erosion_altitude_ratio = e.altitude_ratio;
-    erosion_plastic_strain = e.plastic_strain;
-  }
-};
 
 // Everything a run starts from. Zone density and specific energy and node velocity are set in
 // `mesh`; masses, volumes and pressures are derived by the Simulation.
@@ -49,16 +34,6 @@ struct SimulationSetup {
   Controls controls;
 };
 
-// What set the last time step.
-enum class TimeStepLimit : std::uint8_t {
-  zone,             // a zone's CFL-stable step (controlling_zone())
-  growth,           // the growth limit on the previous step
-  particle_travel,  // a particle may move only a fraction of its radius per step
-  maximum,          // controls.max_time_step
-  end_time          // the last step, cut to reach the end time
-};
-
-
 // Fracture counters of one body.
 struct FractureCounts {
   long damaged = 0;               // zones damaged so far
@@ -67,15 +42,6 @@ struct FractureCounts {
   double converted_mass = 0.0;    // per radian or per m
   long eroded = 0;                // intact zones removed by erosion on distortion
   double eroded_mass = 0.0;       // per radian or per m
-};
-
-// Per-body summary figures (whole body: x 2 pi in RZ).
-struct BodySummary {
-  double mass = 0.0;
-  Vec2 velocity;   // mass-weighted mean velocity
-  Vec2 centroid;   // mass-weighted node centroid
-  Vec2 bbox_min, bbox_max;  // over the nodes still carrying mass (not those of zones that left the grid)
-  Index zones = 0; // active zones
 };
 
 // Everything that changes during a run: with the setup it came from, it restarts a run exactly.
@@ -126,7 +92,7 @@ class Simulation {
   Index controlling_zone() const { return state_.controlling_zone; }
   // What set dt^{n+1/2} (with zone: the controlling zone), and the body owning a zone (-1 for none).
   TimeStepLimit time_step_limit() const { return time_step_limit_; }
-  Index body_of_zone(Index zone) const;
+  Index body_of_zone(Index zone) const { return krug::body_of_zone(bodies_, zone); }
   // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
   double stable_time_step() const { return state_.stable_time_step; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
@@ -146,7 +112,7 @@ class Simulation {
   // For tests of the time integration: cap the next step (the CFL and growth limits still apply).
   void cap_next_time_step(double dt);
 
-  BodySummary summarise(const Body& body) const;
+  BodySummary summarise(const Body& body) const { return summarise_body(state_.mesh, body, geometry_); }
   // Connected pieces of a body's remaining zones (by shared edges; connected_pieces), heaviest first,
   // masses for the whole body (x 2 pi in RZ).
   std::vector<Fragment> fragments(const Body& body) const;
@@ -158,16 +124,16 @@ class Simulation {
   double hourglass_work(Index body) const { return state_.body_hourglass_work[static_cast<std::size_t>(body)]; }
   double converted_energy(Index body) const { return state_.body_converted_energy[static_cast<std::size_t>(body)]; }
   // Sum m e over the body's active zones (per radian or per m).
-  double internal_energy(Index body) const;
+  double internal_energy(Index body) const {
+    const Body& b = bodies_[static_cast<std::size_t>(body)];
+    return krug::internal_energy(state_.mesh.zones, b.zone_begin, b.zone_end);
+  }
   bool fracture_enabled() const { return fracture_enabled_; }
   double whole_body_factor() const { return krug::whole_body_factor(geometry_); }
 
  private:
-  // The CFL number of a body's zones: controls.cfl_fluid without strength, controls.cfl with it.
-  double cfl_of(const Body& body) const;
   // The recipe, in order.
   void compute_forces();          // 1. F^n: corner forces of every zone, and the boundary loads
-  void update_area_weighted_scale();  // s_p = M_p / M^A_p and the booking weights, at the current positions (area-weighted RZ)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from the predicted gaps; the contact solver applies it as it goes:
                                   //    u^{n+1/2} = u* + dt^n R / M (nothing without contact)
@@ -180,8 +146,6 @@ class Simulation {
 
   void initialise();
   void share_edge_limiters();  // the edge-viscosity limiter computed once per edge (from the connectivity)
-  void measure_ledger();
-  void book_contact_work(double dt_mid);
   boundary::Books boundary_books() { return {state_.ledger.energy.boundary, state_.ledger.axial_boundary_impulse}; }
   enum class ConversionRule { surface, interior, erosion };
   void convert_zone(Index zone, ConversionRule rule);

@@ -1,0 +1,310 @@
+// The hydro kernels alone (include/krug/hydro/zone_forces.hpp, zone_update.hpp), called directly on
+// one zone built in code, without a scenario or a Simulation: the work of the pressure corner forces
+// against the exact p dV of a uniform compression, the deviator under a rigid rotation, and the sum
+// of a zone's corner forces (docs/theory.md §2 steps 1 and 5).
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+
+#include "krug/hydro/zone_forces.hpp"
+#include "krug/hydro/zone_update.hpp"
+#include "krug/material/eos.hpp"
+#include "krug/material/strength.hpp"
+
+using namespace krug;
+
+namespace {
+
+// A mesh of one zone with corners x (counter-clockwise), at rest, of density rho and specific
+// energy e; its mass is rho times its area (planar) or r-weighted volume (RZ).
+Mesh one_zone(const quad::Corners& x, GeometryKind geometry, double rho, double e) {
+  Mesh mesh;
+  mesh.nodes.resize(4);
+  mesh.zones.resize(1);
+  for (Index p = 0; p < 4; ++p) {
+    mesh.nodes.x[p] = x[p].x;
+    mesh.nodes.y[p] = x[p].y;
+    mesh.nodes.body[p] = 0;
+  }
+  ZoneFields& zones = mesh.zones;
+  zones.corners[0] = {0, 1, 2, 3};
+  zones.body[0] = 0;
+  zones.area[0] = quad::area(x);
+  zones.volume[0] = geometry == GeometryKind::axisymmetric ? quad::axisymmetric_volume(x) : zones.area[0];
+  zones.density[0] = rho;
+  zones.mass[0] = rho * zones.volume[0];
+  zones.specific_energy[0] = e;
+  return mesh;
+}
+
+quad::Corners positions(const Mesh& mesh) { return mesh.corner_positions(0); }
+
+double volume_of(const quad::Corners& x, GeometryKind geometry) {
+  return geometry == GeometryKind::axisymmetric ? quad::axisymmetric_volume(x) : quad::area(x);
+}
+
+// Sets every node's velocity u^{n-1/2} = u^{n+1/2} = velocity(p), so that the mid velocity ubar of the
+// energy update is that velocity.
+template <class Velocity>
+void set_velocities(Mesh& mesh, Velocity velocity) {
+  for (Index p = 0; p < 4; ++p) {
+    const Vec2 u = velocity(p);
+    mesh.nodes.u[p] = mesh.nodes.u_old[p] = u.x;
+    mesh.nodes.v[p] = mesh.nodes.v_old[p] = u.y;
+  }
+}
+
+void move_nodes(Mesh& mesh, double dt) {
+  for (Index p = 0; p < 4; ++p) {
+    mesh.nodes.x[p] += dt * mesh.nodes.u[p];
+    mesh.nodes.y[p] += dt * mesh.nodes.v[p];
+  }
+}
+
+// sum_p f_p . u_p of the stored corner forces: the rate of work of the zone's forces on its nodes.
+double corner_power(const Mesh& mesh) {
+  double power = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    power += mesh.zones.corner_force[2 * static_cast<std::size_t>(p)] * mesh.nodes.u[p] +
+             mesh.zones.corner_force[2 * static_cast<std::size_t>(p) + 1] * mesh.nodes.v[p];
+  }
+  return power;
+}
+
+// Hydro parameters with no viscosity and no hourglass control: the corner forces are the stress's alone.
+ZoneForceParams stress_only() {
+  ZoneForceParams params;
+  params.viscosity.model = ViscosityModel::off;
+  params.hourglass.viscous = 0.0;
+  params.hourglass.stiffness = 0.0;
+  return params;
+}
+
+template <GeometryKind G>
+void compute_forces(Mesh& mesh, const ZoneForceParams& params) {
+  switch (params.viscosity.model) {
+    case ViscosityModel::edge: compute_corner_forces<G, ViscosityModel::edge>(mesh, 0, 1, params); break;
+    case ViscosityModel::scalar: compute_corner_forces<G, ViscosityModel::scalar>(mesh, 0, 1, params); break;
+    case ViscosityModel::off: compute_corner_forces<G, ViscosityModel::off>(mesh, 0, 1, params); break;
+  }
+}
+
+// A distorted quadrilateral (no two sides parallel), off the axis.
+const quad::Corners distorted{Vec2{0.20, 0.30}, Vec2{1.10, 0.25}, Vec2{1.00, 1.20}, Vec2{0.30, 1.00}};
+
+}  // namespace
+
+// (a) A uniform compression about a point c, u_p = -eps (x_p - c), is a homothety: every length scales
+// by s(t) = 1 - eps (t - t^n), the area by s^2 and, with c on the axis, the r-weighted volume by s^3.
+// The stress corner force of a pressure is f_p = p dA/dx_p (planar) or p dV/dx_p (RZ, control
+// volume), so its rate of work sum_p f_p . u_p is p dV/dt at the geometry the forces were built on.
+// Over a step dt = k / eps:
+//   - forces on x^n (the scheme: F^n, then x^{n+1} = x^n + dt u): W = p dt dV/dt(t^n) = -d p V k, d = 2
+//     (planar) or 3 (RZ), against the exact p dV = p V ((1 - k)^d - 1); the difference is the
+//     higher-order terms of the binomial, p V k^2 (planar) and p V (3 k^2 - k^3) (RZ), a relative
+//     k/2 and about k: the first-order error of holding the forces at t^n, not round-off;
+//   - forces on the mid-step geometry: the midpoint rule is exact for a quadratic, so the planar work
+//     is p dV to round-off; the cubic RZ volume leaves p V (2 h^3), h = k/2, from
+//     (1 + h)^3 - (1 - h)^3 = 6 h + 2 h^3.
+// The energy update m de = -dt sum_p f_p . ubar_p (update_zones) must turn W into -m de exactly.
+// Tolerances: 1e-13 of p |dV| (the terms are sums of a few products, each with a relative round-off
+// of a few 1e-16; k = 0.01 makes the higher-order terms 5e-3 and 3e-2 of p dV, far above it).
+TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "[hydro][kernel]") {
+  const double rho = 1.2, gamma = 1.4, pressure = 2.5e5;
+  const double e = pressure / ((gamma - 1.0) * rho);
+  const double eps = 1.0e3;  // 1/s
+  const double k = 0.01;
+  const double dt = k / eps;
+  const ZoneForceParams params = stress_only();
+  ZoneUpdateParams update;
+  update.time_step_mid = dt;
+  update.time_step_next = dt;
+
+  auto check_step = [&](GeometryKind geometry, Vec2 centre, double dimension) {
+    Mesh mesh = one_zone(distorted, geometry, rho, e);
+    mesh.zones.pressure[0] = pressure;
+    set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
+    const double volume = volume_of(positions(mesh), geometry);
+    if (geometry == GeometryKind::axisymmetric) {
+      compute_forces<GeometryKind::axisymmetric>(mesh, params);
+    } else {
+      compute_forces<GeometryKind::planar>(mesh, params);
+    }
+    const double work = dt * corner_power(mesh);
+    move_nodes(mesh, dt);
+    const double exact = pressure * (volume_of(positions(mesh), geometry) - volume);
+    // The binomial's higher-order terms: V ((1 - k)^d - 1) + d V k.
+    const double remainder = dimension == 2 ? pressure * volume * k * k : pressure * volume * (3 * k * k - k * k * k);
+    CHECK(work == Approx(exact - remainder).epsilon(0.0).margin(1e-13 * std::abs(exact)));
+    CHECK(std::abs(work - exact) > 1e-3 * std::abs(exact));  // the remainder is there, and not round-off
+
+    const double energy_before = mesh.zones.mass[0] * mesh.zones.specific_energy[0];
+    const ZoneUpdateResult result = geometry == GeometryKind::axisymmetric
+        ? update_zones<GeometryKind::axisymmetric>(mesh, 0, 1, IdealGas{gamma}, NoStrength{}, update)
+        : update_zones<GeometryKind::planar>(mesh, 0, 1, IdealGas{gamma}, NoStrength{}, update);
+    REQUIRE(result.failed_zone < 0);
+    const double heating = mesh.zones.mass[0] * mesh.zones.specific_energy[0] - energy_before;
+    CHECK(heating == Approx(-work).epsilon(0.0).margin(1e-13 * std::abs(work)));
+    CHECK(mesh.zones.volume[0] == Approx(volume_of(positions(mesh), geometry)).epsilon(1e-15));
+  };
+
+  SECTION("planar, forces at t^n, through update_zones") { check_step(GeometryKind::planar, Vec2{0.6, 0.7}, 2); }
+  SECTION("axisymmetric control volume, forces at t^n, through update_zones") {
+    check_step(GeometryKind::axisymmetric, Vec2{0.6, 0.0}, 3);  // the centre on the axis: V ~ s^3
+  }
+
+  SECTION("forces on the mid-step geometry") {
+    for (const GeometryKind geometry : {GeometryKind::planar, GeometryKind::axisymmetric}) {
+      const Vec2 centre{0.6, 0.0};
+      Mesh mesh = one_zone(distorted, geometry, rho, e);  // the mid-step geometry x^{n+1/2}
+      mesh.zones.pressure[0] = pressure;
+      set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
+      const double volume = volume_of(positions(mesh), geometry);
+      if (geometry == GeometryKind::axisymmetric) {
+        compute_forces<GeometryKind::axisymmetric>(mesh, params);
+      } else {
+        compute_forces<GeometryKind::planar>(mesh, params);
+      }
+      const double work = dt * corner_power(mesh);
+      move_nodes(mesh, -0.5 * dt);
+      const double start = volume_of(positions(mesh), geometry);
+      move_nodes(mesh, dt);
+      const double exact = pressure * (volume_of(positions(mesh), geometry) - start);
+      const double h = 0.5 * k;
+      const double remainder = geometry == GeometryKind::axisymmetric ? 2.0 * pressure * volume * h * h * h : 0.0;
+      INFO((geometry == GeometryKind::axisymmetric ? "axisymmetric" : "planar"));
+      CHECK(work == Approx(exact + remainder).epsilon(0.0).margin(1e-13 * std::abs(exact)));
+    }
+  }
+}
+
+// (b) A rigid rotation by theta about a point, taken in one step: x^{n+1} = c + R (x^n - c) and
+// u = (x^{n+1} - x^n) / dt. On the mid-step geometry u = (2/dt) (R - I)(R + I)^{-1} (x - c), and
+// (R - I)(R + I)^{-1} = tan(theta/2) J (J the quarter turn): the velocity gradient is a pure spin,
+// omega = (2/dt) tan(theta/2), with no strain rate. update_zones must then rotate the deviator by
+// omega dt = 2 tan(theta/2) (the exact rotation, strength.hpp) and change nothing else: J2 = s:s/2 and
+// the trace (0) kept, the out-of-plane component untouched, no plastic strain, the density kept.
+// Tolerances: the strain rate is zero up to the round-off of the velocity gradient, |L| 1e-16, which
+// the Hooke increment multiplies by 2 mu dt: 2 mu x 2 tan(theta/2) x 1e-16 ~ 3e-6 Pa for mu = 80 GPa;
+// against |s| = 2.1e8 Pa that is 1.5e-14, and 1e-12 of |s| leaves a margin of about 70.
+TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[hydro][kernel]") {
+  const double theta = 0.2;  // rad, in one step
+  const double dt = 1.0e-7;  // s
+  const Vec2 centre{0.5, 0.4};
+  const PerfectlyPlastic strength{80.0e9, 1.0e9};  // Pa; J2 below yield: an elastic step
+  const LinearBulk eos{140.0e9, 7850.0};
+  const Deviator stress{1.1e8, 2.3e7, -7.7e7, -1.33e8};  // trace-free, general
+  const double s_norm = std::sqrt(double_contraction(stress, stress));
+  REQUIRE(equivalent_stress(stress) < strength.yield_stress);
+
+  Mesh mesh = one_zone(distorted, GeometryKind::planar, 7850.0, 0.0);
+  mesh.zones.deviator_xx[0] = stress.xx;
+  mesh.zones.deviator_yy[0] = stress.yy;
+  mesh.zones.deviator_xy[0] = stress.xy;
+  mesh.zones.deviator_zz[0] = stress.zz;
+  const double c = std::cos(theta), s = std::sin(theta);
+  const quad::Corners start = positions(mesh);
+  set_velocities(mesh, [&](Index p) {
+    const Vec2 d = start[p] - centre;
+    const Vec2 rotated{c * d.x - s * d.y, s * d.x + c * d.y};
+    return (1.0 / dt) * (rotated - d);
+  });
+  move_nodes(mesh, dt);  // x^{n+1}; the zone's corner forces are zero, so the energy does not change
+
+  ZoneUpdateParams update;
+  update.time_step_mid = dt;
+  update.time_step_next = dt;
+  update.shear_modulus = strength.shear_modulus;
+  const ZoneUpdateResult result = update_zones<GeometryKind::planar>(mesh, 0, 1, eos, strength, update);
+  REQUIRE(result.failed_zone < 0);
+
+  const Deviator after{mesh.zones.deviator_xx[0], mesh.zones.deviator_yy[0], mesh.zones.deviator_xy[0],
+                       mesh.zones.deviator_zz[0]};
+  const double tolerance = 1e-12 * s_norm;
+  CHECK(0.5 * double_contraction(after, after) ==
+        Approx(0.5 * double_contraction(stress, stress)).epsilon(0.0).margin(tolerance * s_norm));
+  CHECK(std::abs(trace(after)) < tolerance);
+  CHECK(after.zz == Approx(stress.zz).epsilon(0.0).margin(tolerance));
+  // Rotated, by omega dt = 2 tan(theta/2) (0.2007 rad, not theta: the mid-step spin times dt).
+  const Deviator expected = rotate_deviator(stress, 2.0 * std::tan(0.5 * theta));
+  CHECK(after.xx == Approx(expected.xx).epsilon(0.0).margin(tolerance));
+  CHECK(after.yy == Approx(expected.yy).epsilon(0.0).margin(tolerance));
+  CHECK(after.xy == Approx(expected.xy).epsilon(0.0).margin(tolerance));
+  CHECK(std::abs(after.xy - stress.xy) > 1e-2 * s_norm);  // it did turn
+  CHECK(mesh.zones.plastic_strain[0] == 0.0);
+  CHECK(mesh.zones.density[0] == Approx(7850.0).epsilon(1e-14));  // a rotation keeps the area
+}
+
+// (c) The corner forces of a zone, with every part on (stress with a deviator, edge viscosity on
+// compressing edges, viscous and stiffness hourglass), on a distorted zone with an arbitrary velocity
+// field:
+//   planar: sum_p f_p = 0 (sum_p dA/dx_p = 0; each viscous damper acts in equal and opposite pairs;
+//           the hourglass shape vector sums to zero, quad.hpp);
+//   RZ control volume: sum_p f_p,z = 0, the zone's axial momentum (docs/theory.md §2 step 1), but the
+//           radial forces sum to -sigma_tt A: the hoop stress's pull on the meridional section, since
+//           sum_p dV/dr_p = A (moving the zone by dr changes V = integral of r dA by A dr) and the in-plane
+//           operators (dA/dx_p, or the r-weighted B_p of a body with strength) sum to zero.
+// Tolerance: 1e-13 of the largest corner force (the sums cancel terms of that size).
+TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, and radially to the hoop stress)",
+          "[hydro][kernel]") {
+  const double pressure = 3.0e8;
+  const Deviator stress{1.1e8, 2.3e7, -7.7e7, -1.33e8};
+  const std::array<Vec2, 4> velocity{Vec2{40.0, -15.0}, Vec2{-55.0, 10.0}, Vec2{-20.0, -35.0}, Vec2{30.0, 60.0}};
+
+  ZoneForceParams params;  // defaults: edge viscosity with limiter, viscous and stiffness hourglass
+  params.shock_slope = 0.75;
+  params.shear_modulus = 26.0e9;
+  params.previous_time_step = 1.0e-8;
+
+  auto build = [&](bool with_deviator) {
+    Mesh mesh = one_zone(distorted, GeometryKind::planar, 2700.0, 0.0);
+    mesh.zones.pressure[0] = pressure;
+    mesh.zones.sound_speed[0] = 5000.0;
+    if (with_deviator) {
+      mesh.zones.deviator_xx[0] = stress.xx;
+      mesh.zones.deviator_yy[0] = stress.yy;
+      mesh.zones.deviator_xy[0] = stress.xy;
+      mesh.zones.deviator_zz[0] = stress.zz;
+    }
+    set_velocities(mesh, [&](Index p) { return velocity[static_cast<std::size_t>(p)]; });
+    return mesh;
+  };
+  auto total = [](const Mesh& mesh) {
+    Vec2 sum{};
+    double largest = 0.0;
+    for (std::size_t p = 0; p < 4; ++p) {
+      const Vec2 f{mesh.zones.corner_force[2 * p], mesh.zones.corner_force[2 * p + 1]};
+      sum += f;
+      largest = std::max(largest, norm(f));
+    }
+    return std::pair{sum, largest};
+  };
+
+  SECTION("planar") {
+    Mesh mesh = build(true);
+    compute_forces<GeometryKind::planar>(mesh, params);
+    const auto [sum, largest] = total(mesh);
+    CHECK(mesh.zones.viscous_speed[0] > 0.0);  // the viscosity acted
+    CHECK((mesh.zones.hourglass_x[0] != 0.0 && mesh.zones.hourglass_y[0] != 0.0));  // and the hourglass springs
+    CHECK(std::abs(sum.x) < 1e-13 * largest);
+    CHECK(std::abs(sum.y) < 1e-13 * largest);
+  }
+
+  SECTION("axisymmetric control volume") {
+    for (const bool with_deviator : {false, true}) {
+      INFO((with_deviator ? "with a deviator (r-weighted operator B_p)" : "a gas (dA/dx_p)"));
+      ZoneForceParams form = params;
+      if (!with_deviator) form.shear_modulus = 0.0;
+      Mesh mesh = build(with_deviator);
+      compute_forces<GeometryKind::axisymmetric>(mesh, form);
+      const auto [sum, largest] = total(mesh);
+      CHECK(mesh.zones.viscous_speed[0] > 0.0);
+      CHECK(std::abs(sum.x) < 1e-13 * largest);
+      const double hoop = (with_deviator ? stress.zz : 0.0) - pressure;  // sigma_tt
+      const double area = quad::area(distorted);
+      CHECK(sum.y == Approx(-hoop * area).epsilon(0.0).margin(1e-13 * largest));
+      CHECK(std::abs(sum.y) > 0.1 * largest);  // the radial sum is not zero
+    }
+  }
+}
