@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
+#include "krug/io/text_file.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/run/ballistic.hpp"
 #include "plots.hpp"

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
 #include "krug/io/sweep.hpp"
+#include "krug/io/text_file.hpp"
 
 namespace krug::run {
 

@@ -8,7 +8,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/run/stop_rule.hpp"
 #include "test_support.hpp"
 
@@ -88,10 +88,10 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_stop.json");
   const fs::path dir = krug::test::scratch("stop_rule_e1");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::run::run_scenario(scenario, options);
-  CHECK(result.status == krug::io::RunStatus::completed);
+  const auto result = krug::output::run_scenario(scenario, options);
+  CHECK(result.status == krug::run::RunStatus::completed);
   CHECK(result.stopped_by == "stop rule");
   const Json summary = krug::test::read_json(dir / "summary.json");
   CHECK(summary["status"] == "completed");
@@ -105,17 +105,17 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   SECTION("restarted inside the window, it stops at the same cycle") {
     const fs::path stopped = krug::test::scratch("stop_rule_e1_restart");
     std::atomic<bool> interrupt{false};
-    krug::run::RunOptions first;
+    krug::output::RunOptions first;
     first.output_directory = stopped;
     first.interrupt = &interrupt;
     first.on_cycle = [&](const krug::Simulation& s, double) {
       if (s.time() >= 1.8e-6) interrupt = true;
       return true;
     };
-    REQUIRE(krug::run::run_scenario(scenario, first).message == "interrupted");
-    krug::run::RunOptions second;
+    REQUIRE(krug::output::run_scenario(scenario, first).message == "interrupted");
+    krug::output::RunOptions second;
     second.output_directory = stopped;
-    CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
+    CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
     CHECK(krug::test::summary_without_timing(stopped / "summary.json") == krug::test::summary_without_timing(dir / "summary.json"));
   }
 }
@@ -126,24 +126,24 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
   const auto run = [&](double plane, const std::string& name) {
     document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}, {"clear_of", plane}};
     const auto scenario = krug::io::parse_scenario(document.dump(), name + ".json");
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = krug::test::scratch(name);
-    return krug::run::run_scenario(scenario, options);
+    return krug::output::run_scenario(scenario, options);
   };
   // A plane behind the flyer: clear from the start, so the rule stops the run as without the plane.
   const auto behind = run(-6e-3, "stop_rule_clear_behind");
   CHECK(behind.stopped_by == "stop rule");
   // The target's face: the flyer never passes it, so the run goes on to its end time.
   const auto face = run(0.0, "stop_rule_clear_face");
-  CHECK(face.status == krug::io::RunStatus::completed);
+  CHECK(face.status == krug::run::RunStatus::completed);
   CHECK(face.stopped_by == "end_time");
 }
 
 TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {
   const auto scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   const fs::path dir = krug::test::scratch("stop_rule_none");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  CHECK(krug::run::run_scenario(scenario, options).stopped_by == "end_time");
+  CHECK(krug::output::run_scenario(scenario, options).stopped_by == "end_time");
   CHECK(krug::test::read_json(dir / "summary.json")["stopped_by"] == "end_time");
 }
