@@ -120,6 +120,72 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   }
 }
 
+// The loop writes no file: it tells its observer (krug/run/observer.hpp) after every cycle, when a
+// checkpoint is due and at the end. An observer that only counts sees the run RunRecorder would write.
+class CountingObserver final : public krug::run::RunObserver {
+ public:
+  void cycle(const krug::Simulation&) override { ++cycles; }
+  std::filesystem::path checkpoint(const krug::Simulation& simulation, krug::run::RunProgress& progress) override {
+    ++checkpoints;
+    kept = progress;
+    checkpoint_time = simulation.time();
+    return "kept in memory";
+  }
+  void finish(const krug::Simulation&, const krug::run::RunResult& result) override {
+    ++finishes;
+    stopped_by = result.stopped_by;
+  }
+  long cycles = 0;
+  int checkpoints = 0, finishes = 0;
+  double checkpoint_time = 0.0;
+  krug::run::RunProgress kept;
+  std::string stopped_by;
+};
+
+TEST_CASE("the run loop reaches its outputs only through its observer (E1)", "[app][stop]") {
+  Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
+  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_observed.json");
+  REQUIRE_FALSE(fs::exists(scenario.output.directory));
+
+  krug::Simulation simulation(scenario.setup);
+  CountingObserver observer;
+  const auto result = krug::run::run_simulation(scenario, simulation, observer, {});
+  CHECK(result.stopped_by == "stop rule");
+  CHECK(observer.cycles == simulation.cycle());
+  CHECK(observer.checkpoints == 0);
+  CHECK(observer.finishes == 1);
+  CHECK(observer.stopped_by == "stop rule");
+  CHECK_FALSE(fs::exists(scenario.output.directory));  // nothing written
+
+  SECTION("an interruption is a checkpoint the observer keeps, with the loop's part of the progress") {
+    krug::Simulation interrupted(scenario.setup);
+    CountingObserver first;
+    std::atomic<bool> interrupt{false};
+    krug::run::RunOptions options;
+    options.interrupt = &interrupt;
+    options.on_cycle = [&](const krug::Simulation& s, double) {
+      if (s.time() >= 1.8e-6) interrupt = true;
+      return true;
+    };
+    const auto stopped = krug::run::run_simulation(scenario, interrupted, first, options);
+    CHECK(stopped.stopped_by == "interrupted");
+    CHECK(stopped.checkpoint == "kept in memory");
+    REQUIRE(first.checkpoints == 1);
+    CHECK(first.checkpoint_time == interrupted.time());
+    CHECK(first.kept.has_stop_state);
+    CHECK(first.kept.stop.armed);  // the flyer was hit before 1.8 us
+
+    // Continued from the kept progress (the state as it was), it stops where the whole run did.
+    CountingObserver second;
+    const auto resumed = krug::run::resume_simulation(scenario, interrupted, first.kept, second, {});
+    CHECK(resumed.stopped_by == "stop rule");
+    CHECK(interrupted.cycle() == simulation.cycle());
+    CHECK(interrupted.time() == simulation.time());
+    CHECK(first.cycles + second.cycles == observer.cycles);
+  }
+}
+
 TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body has passed it (E1)", "[app][stop]") {
   // The flyer occupies x in [-5, 0] mm and moves towards +x; after the separation it is at rest.
   Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
