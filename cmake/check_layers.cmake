@@ -7,7 +7,7 @@
 #
 # The order, lowest first, as ranks; modules of one rank (material, fracture, particles; contact,
 # boundary) are siblings that must not include one another.
-set(order core mesh material fracture particles contact boundary hydro solver setup io run)
+set(order core mesh material fracture particles contact boundary hydro solver setup io run output)
 set(rank_core 0)
 set(rank_mesh 1)
 set(rank_material 2)
@@ -20,6 +20,7 @@ set(rank_solver 5)
 set(rank_setup 6)
 set(rank_io 7)
 set(rank_run 8)
+set(rank_output 9)
 
 set(failures "")
 foreach(module IN LISTS order)

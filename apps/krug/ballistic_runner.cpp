@@ -12,8 +12,9 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
+#include "krug/io/text_file.hpp"
 #include "krug/io/scenario.hpp"
+#include "krug/output/ballistic_files.hpp"
 #include "krug/run/ballistic.hpp"
 #include "plots.hpp"
 #include "sweep_runner.hpp"
@@ -145,19 +146,19 @@ int run_ballistic(const BallisticArguments& arguments, const Workers& workers, c
   run::BallisticStudy latest;
   auto on_round = [&](const run::BallisticStudy& study) {
     latest = study;
-    run::write_ballistic_results(out, study, scenario.string());  // the tables so far, round by round
+    output::write_ballistic_results(out, study, scenario.string());  // the tables so far, round by round
   };
   run::BallisticStudy study;
   try {
     study = run::ballistic_search(options, evaluate, on_round);
   } catch (const Interrupted&) {
     latest.notes.push_back("interrupted: the study is incomplete");
-    run::write_ballistic_results(out, latest, scenario.string());
+    output::write_ballistic_results(out, latest, scenario.string());
     std::fprintf(stderr, "krug: interrupted after %zu runs; the tables so far are in %s\n", latest.runs.size(),
                  out.string().c_str());
     return 128 + (signal_number > 0 ? static_cast<int>(signal_number) : 2);
   }
-  run::write_ballistic_results(out, study, scenario.string());
+  output::write_ballistic_results(out, study, scenario.string());
   const std::string note = make_ballistic_plot(out);
   if (!note.empty() && !arguments.quiet) std::fprintf(stderr, "krug: %s\n", note.c_str());
   for (const std::string& line : run::ballistic_summary_lines(study)) std::printf("krug: %s\n", line.c_str());

@@ -21,7 +21,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/material/library.hpp"
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/io/scenario.hpp"
 #include "pictures.hpp"
 #include "plots.hpp"
@@ -180,7 +180,7 @@ int run(const Arguments& args) {
   const std::string title = !scenario.title.empty() ? scenario.title
                             : restarting            ? checkpoint.parent_path().filename().string()
                                                     : std::filesystem::path(args.scenario).stem().string();
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = directory;
   options.interrupt = &interrupted;
 
@@ -239,8 +239,8 @@ int run(const Arguments& args) {
     return true;
   };
   install_signal_handlers();
-  const krug::io::RunResult result = restarting ? krug::run::restart_scenario(scenario, checkpoint, options)
-                                                : krug::run::run_scenario(scenario, options);
+  const krug::run::RunResult result = restarting ? krug::output::restart_scenario(scenario, checkpoint, options)
+                                                   : krug::output::run_scenario(scenario, options);
   if (interactive && progress_shown && !args.verbose) std::fputc('\n', stderr);
   for (const std::string& warning : result.warnings) std::fprintf(stderr, "krug: warning: %s\n", warning.c_str());
 
@@ -254,12 +254,12 @@ int run(const Arguments& args) {
                  result.checkpoint.string().c_str(), result.checkpoint.string().c_str());
     return 128 + (signal_number > 0 ? static_cast<int>(signal_number) : SIGINT);
   }
-  if (result.status == krug::io::RunStatus::completed) {
+  if (result.status == krug::run::RunStatus::completed) {
     if (!args.quiet) {
       const std::string how = result.stopped_by == "stop rule" ? " (ended by the stop rule)" : "";
       std::printf("krug: %s completed%s in %.2f s; results in %s (summary.json, history.csv, run.pvd)\n", title.c_str(),
                   how.c_str(), result.wall_seconds, directory.string().c_str());
-      for (const std::string& line : krug::io::penetration_lines(result)) std::printf("krug: %s\n", line.c_str());
+      for (const std::string& line : krug::output::penetration_lines(result)) std::printf("krug: %s\n", line.c_str());
     }
     return 0;
   }

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "krug/io/sweep.hpp"
+#include "krug/output/outputs.hpp"
 #include "mpi_workers.hpp"
 #include "process.hpp"
 
@@ -75,9 +75,9 @@ Workers local_workers(int jobs, const std::atomic<bool>& interrupted, const vola
 }
 
 std::optional<int> finished_run(const std::filesystem::path& directory, const std::string& resolved_json) {
-  const std::optional<io::RunStatus> status = io::finished_run(directory, resolved_json);
+  const std::optional<run::RunStatus> status = output::finished_run(directory, resolved_json);
   if (!status) return std::nullopt;
-  return *status == io::RunStatus::completed ? 0 : 1;
+  return *status == run::RunStatus::completed ? 0 : 1;
 }
 
 int launched_ranks() {

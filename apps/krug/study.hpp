@@ -41,7 +41,7 @@ std::vector<int> run_jobs(const std::vector<RunJob>& list, int jobs, const std::
                           const volatile std::sig_atomic_t& signal_number, const JobDone& on_done = {});
 Workers local_workers(int jobs, const std::atomic<bool>& interrupted, const volatile std::sig_atomic_t& signal_number);
 
-// Resuming (io::finished_run): the exit code `krug run` gave the finished run of this scenario in
+// Resuming (output::finished_run): the exit code `krug run` gave the finished run of this scenario in
 // `directory` (0 completed, 1 failed), or nullopt: run it.
 std::optional<int> finished_run(const std::filesystem::path& directory, const std::string& resolved_json);
 

@@ -1,6 +1,6 @@
 #pragma once
-// Umbrella header of the Krug library: numerics and scenes built in C++ (the JSON/file layer is in
-// krug/io/).
+// Umbrella header of the Krug library: numerics and scenes built in C++ (the scenario reader is in
+// krug/io/, the run loop in krug/run/, the run's files in krug/output/).
 #include "krug/core/error.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/core/vec2.hpp"
@@ -13,6 +13,5 @@
 #include "krug/solver/controls.hpp"
 #include "krug/solver/gauges.hpp"
 #include "krug/solver/ledger.hpp"
-#include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 #include "krug/setup/scene.hpp"

@@ -7,26 +7,19 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/checkpoint.hpp"
+#include "krug/run/penetration.hpp"
 #include "krug/run/stop_rule.hpp"
 
 namespace krug::run {
 
-using io::Checkpoint;
-using io::RunProgress;
-using io::RunRecorder;
 using io::StopRule;
-using io::fnv1a;
-using io::load_scenario;
-using io::read_checkpoint;
-using io::write_checkpoint;
 
 namespace {
 
 // The share of the internal energy beyond which the hourglass work earns a warning.
 constexpr double hourglass_warning_fraction = 0.05;
 
-// Where a run stands between cycles, apart from the simulation and the recorder.
+// Where a run stands between cycles, apart from the simulation and the observer.
 struct LoopState {
   std::optional<StopMonitor> stop;
   std::optional<PenetrationRecord> penetration;
@@ -64,18 +57,17 @@ bool observe_stop(const Simulation& simulation, StopMonitor& monitor, const Scen
 }
 
 // The loop after setup (fresh or restored): steps, outputs, stop rule, checkpoints, interruption.
-RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder& recorder, LoopState& loop,
+RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunObserver& observer, LoopState& loop,
                    const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return loop.previous_wall_seconds +
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  const std::uint64_t scenario_hash = fnv1a(scenario.resolved_json);
   const double interval = scenario.output.checkpoint_interval;
   RunResult result;
   auto checkpoint = [&] {
-    RunProgress progress = recorder.progress();
+    RunProgress progress;
     progress.next_checkpoint_time = loop.next_checkpoint_time;
     progress.wall_seconds = elapsed();
     if (loop.stop) {
@@ -86,8 +78,7 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
       progress.has_penetration = true;
       progress.penetration = *loop.penetration;
     }
-    result.checkpoint = recorder.directory() / "checkpoint.bin";
-    write_checkpoint(result.checkpoint, simulation.state(), progress, scenario_hash);
+    result.checkpoint = observer.checkpoint(simulation, progress);
   };
   if (options.on_start) options.on_start(simulation);
   EventWatch events(simulation);
@@ -96,7 +87,7 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
   try {
     while (!simulation.finished()) {
       simulation.step();
-      recorder.observe(simulation);
+      observer.cycle(simulation);
       // The projectile's summary, once per cycle, for the penetration record and the stop rule.
       std::optional<BodySummary> projectile;
       if (loop.penetration) {
@@ -179,7 +170,7 @@ RunResult run_loop(const Scenario& scenario, Simulation& simulation, RunRecorder
         simulation.ledger().relative_energy_drift(), energy_drift_limit,
         approximate ? " (the area-weighted axisymmetric form is not conservative: its drift shrinks with the mesh)" : ""));
   }
-  recorder.finish(simulation, result);
+  observer.finish(simulation, result);
   return result;
 }
 
@@ -209,59 +200,31 @@ void validate_scenario(const Scenario& scenario) {
   check_cycle_budget(simulation);
 }
 
-RunResult run_scenario(const Scenario& scenario, const RunOptions& options) {
-  Simulation simulation(scenario.setup);
-  check_cycle_budget(simulation);
-  RunRecorder recorder(scenario, simulation,
-                       options.output_directory.empty() ? std::filesystem::path(scenario.output.directory)
-                                                        : options.output_directory,
-                       options.picture);
+RunResult run_simulation(const Scenario& scenario, Simulation& simulation, RunObserver& observer,
+                         const RunOptions& options) {
   LoopState loop;
   if (scenario.penetration) loop.penetration = start_penetration(simulation, *scenario.penetration);
   loop.stop = stop_monitor(scenario);
   if (loop.stop) (void)observe_stop(simulation, *loop.stop, scenario, loop.penetration, std::nullopt);
   loop.next_checkpoint_time = scenario.output.checkpoint_interval;
-  return run_loop(scenario, simulation, recorder, loop, options);
+  return run_loop(scenario, simulation, observer, loop, options);
 }
 
-RunResult restart_scenario(const std::filesystem::path& checkpoint, const RunOptions& options) {
-  const std::filesystem::path resolved = checkpoint.parent_path() / "scenario.resolved.json";
-  if (!std::filesystem::exists(resolved)) {
-    throw InputError(fmt::format("{}: missing; a restart needs the resolved scenario written next to the checkpoint",
-                                 resolved.string()));
-  }
-  return restart_scenario(load_scenario(resolved), checkpoint, options);
-}
-
-RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path& checkpoint_file,
-                           const RunOptions& options) {
-  Checkpoint checkpoint = read_checkpoint(checkpoint_file);
-  std::vector<std::string> warnings;
-  if (checkpoint.scenario_hash != fnv1a(scenario.resolved_json)) {
-    warnings.push_back(fmt::format("the scenario differs from the one {} was taken with; continuing with the "
-                                   "scenario as it is now", checkpoint_file.string()));
-  }
-  Simulation simulation(scenario.setup);
-  simulation.restore(std::move(checkpoint.state));
-  const std::filesystem::path previous = checkpoint_file.parent_path().empty() ? std::filesystem::path(".")
-                                                                               : checkpoint_file.parent_path();
-  const std::filesystem::path directory = options.output_directory.empty() ? previous : options.output_directory;
-  RunRecorder recorder(scenario, simulation, directory, options.picture, checkpoint.progress, previous);
+RunResult resume_simulation(const Scenario& scenario, Simulation& simulation, const RunProgress& progress,
+                            RunObserver& observer, const RunOptions& options) {
   LoopState loop;
   loop.stop = stop_monitor(scenario);
-  if (loop.stop && checkpoint.progress.has_stop_state) loop.stop->restore(checkpoint.progress.stop);
+  if (loop.stop && progress.has_stop_state) loop.stop->restore(progress.stop);
   if (scenario.penetration) {
-    loop.penetration = checkpoint.progress.has_penetration ? checkpoint.progress.penetration
-                                                           : start_penetration(simulation, *scenario.penetration);
+    loop.penetration =
+        progress.has_penetration ? progress.penetration : start_penetration(simulation, *scenario.penetration);
   }
-  loop.next_checkpoint_time = checkpoint.progress.next_checkpoint_time;
+  loop.next_checkpoint_time = progress.next_checkpoint_time;
   if (scenario.output.checkpoint_interval > 0.0 && !(loop.next_checkpoint_time > simulation.time())) {
     loop.next_checkpoint_time = simulation.time() + scenario.output.checkpoint_interval;
   }
-  loop.previous_wall_seconds = checkpoint.progress.wall_seconds;
-  RunResult result = run_loop(scenario, simulation, recorder, loop, options);
-  result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
-  return result;
+  loop.previous_wall_seconds = progress.wall_seconds;
+  return run_loop(scenario, simulation, observer, loop, options);
 }
 
 }  // namespace krug::run

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
+#include "krug/output/outputs.hpp"
 #include "krug/io/scenario.hpp"
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/solver/history_columns.hpp"
 #include "krug/solver/output_fields.hpp"
 #include "test_support.hpp"
@@ -54,11 +54,11 @@ TEST_CASE("completed and failed runs leave no partial files behind", "[app][outp
     // A floor above the stable step (1.9e-8 s) fails the run at its first cycle.
     if (fail) document["controls"]["time_step_floor"] = 1e-6;
     const fs::path dir = krug::test::scratch(fail ? "atomic_failed" : "atomic_completed");
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = dir;
-    const krug::io::RunResult result =
-        krug::run::run_scenario(krug::io::parse_scenario(document.dump(), scenario_file.string()), options);
-    CHECK((result.status == krug::io::RunStatus::failed) == fail);
+    const krug::run::RunResult result =
+        krug::output::run_scenario(krug::io::parse_scenario(document.dump(), scenario_file.string()), options);
+    CHECK((result.status == krug::run::RunStatus::failed) == fail);
     CHECK(partial_files(dir) == 0);
     // Complete files: the summary parses, the VTK files are closed.
     CHECK(krug::test::read_json(dir / "summary.json")["status"] == (fail ? "failed" : "completed"));
@@ -125,8 +125,8 @@ TEST_CASE("docs/outputs.md lists exactly the VTK fields written, for both geomet
     const krug::Simulation simulation(scenario.setup);
     const std::string geometry = scenario.setup.geometry == krug::GeometryKind::planar ? "planar" : "axisymmetric";
     INFO(example << " (" << geometry << ")");
-    krug::io::write_vtu(simulation, dir / "state.vtu");
-    krug::io::write_vtp(simulation, dir / "particles.vtp");
+    krug::output::write_vtu(simulation, dir / "state.vtu");
+    krug::output::write_vtp(simulation, dir / "particles.vtp");
     const std::string vtu = krug::test::read_text(dir / "state.vtu");
     const std::string vtp = krug::test::read_text(dir / "particles.vtp");
     CHECK(array_names(vtu, "CellData") == documented_fields("vtu-cell-fields", geometry));
@@ -201,8 +201,8 @@ TEST_CASE("the output field registry: unique names, and the VTK files write its 
     state.particles.add({0.01, 0.001}, {-100.0, 5.0}, 1e-6, 1e-4, 1, 0.0);
     state.particles.add({0.02, 0.002}, {-50.0, 0.0}, 2e-6, 2e-4, 1, 0.0);
     simulation.restore(state);
-    krug::io::write_vtu(simulation, dir / "state.vtu", krug::io::VtkEncoding::ascii);
-    krug::io::write_vtp(simulation, dir / "particles.vtp", krug::io::VtkEncoding::ascii);
+    krug::output::write_vtu(simulation, dir / "state.vtu", krug::io::VtkEncoding::ascii);
+    krug::output::write_vtp(simulation, dir / "particles.vtp", krug::io::VtkEncoding::ascii);
     const std::string vtu = krug::test::read_text(dir / "state.vtu");
     const std::string vtp = krug::test::read_text(dir / "particles.vtp");
     const krug::GeometryKind geometry = scenario.setup.geometry;
@@ -240,9 +240,9 @@ TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the l
     INFO(example);
     const fs::path dir = krug::test::scratch(std::string("summary_bodies_") + (example[13] == 's' ? "slab" : "bar"));
     const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = dir;
-    REQUIRE(krug::run::run_scenario(scenario, options).status == krug::io::RunStatus::completed);
+    REQUIRE(krug::output::run_scenario(scenario, options).status == krug::run::RunStatus::completed);
     const auto summary = krug::test::read_json(dir / "summary.json");
     double kinetic = 0.0;
     for (const auto& [name, body] : summary["bodies"].items()) {
@@ -258,11 +258,11 @@ TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the l
 TEST_CASE("docs/outputs.md lists exactly the history.csv columns written", "[app][outputs]") {
   const fs::path dir = krug::test::scratch("history_columns");
   const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
   krug::io::Scenario short_run = scenario;
   short_run.setup.controls.end_time = 1e-7;
-  REQUIRE(krug::run::run_scenario(short_run, options).status == krug::io::RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(short_run, options).status == krug::run::RunStatus::completed);
   const std::string history = krug::test::read_text(dir / "history.csv");
   const std::string header = history.substr(0, history.find('\n'));
   std::vector<std::string> written;
@@ -323,9 +323,9 @@ TEST_CASE("the history column registry: unique names, and history.csv has a cell
     CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
 
     const fs::path dir = krug::test::scratch(std::string("history_registry_") + (example[0] == 'v' ? "sod" : "fracture"));
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = dir;
-    REQUIRE(krug::run::run_scenario(scenario, options).status == krug::io::RunStatus::completed);
+    REQUIRE(krug::output::run_scenario(scenario, options).status == krug::run::RunStatus::completed);
     std::istringstream history(krug::test::read_text(dir / "history.csv"));
     std::string line;
     REQUIRE(std::getline(history, line));

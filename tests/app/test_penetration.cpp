@@ -1,4 +1,4 @@
-// Penetration results (scenario key "penetration", include/krug/solver/penetration.hpp) on E1
+// Penetration results (scenario key "penetration", include/krug/run/penetration.hpp) on E1
 // (examples/verification/slab_impact.json), where the exact answers are known from 1D linear
 // elasticity: a 5 mm flyer at 10 m/s strikes a 10 mm target of the same material (equal impedances).
 //  - the interface moves at v/2 = 5 m/s for the contact time 2 h_f / c_L = 1.550 us, so the flyer's
@@ -16,7 +16,7 @@
 #include <cmath>
 
 #include "krug/core/error.hpp"
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -46,9 +46,9 @@ TEST_CASE("penetration results of E1: the flyer stops at the analytic depth, the
   CHECK(scenario.stop->clear_of_targets);
   CHECK(scenario.stop->body == "flyer");
   const fs::path dir = krug::test::scratch("penetration_e1");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::run::run_scenario(scenario, options);
+  const auto result = krug::output::run_scenario(scenario, options);
   CHECK(result.stopped_by == "stop rule");  // the flyer stopped: final without passing the target
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& p = summary["penetration"];
@@ -96,9 +96,9 @@ TEST_CASE("penetration geometry: a flyer beyond the target's rear face has perfo
   document["end_time"] = 1e-6;
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_beyond.json");
   const fs::path dir = krug::test::scratch("penetration_beyond");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::run::run_scenario(scenario, options);
+  const auto result = krug::output::run_scenario(scenario, options);
   CHECK(result.stopped_by == "end_time");  // no contact: the rule never arms
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& p = summary["penetration"];
@@ -153,7 +153,7 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
   document["end_time"] = 2e-5;
   const auto scenario = krug::io::parse_scenario(document.dump(), "taylor_erosion.json");
   const fs::path dir = krug::test::scratch("taylor_erosion");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
   double largest_strain = 0.0;  // of the zones still in the mesh, after every cycle
   options.on_cycle = [&](const krug::Simulation& s, double) {
@@ -162,8 +162,8 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
     }
     return true;
   };
-  const auto result = krug::run::run_scenario(scenario, options);
-  REQUIRE(result.status == krug::io::RunStatus::completed);
+  const auto result = krug::output::run_scenario(scenario, options);
+  REQUIRE(result.status == krug::run::RunStatus::completed);
   const Json summary = krug::test::read_json(dir / "summary.json");
   const Json& bar = summary["bodies"]["bar"]["fracture"];
   INFO("eroded zones " << bar["eroded_zones"] << ", eroded mass " << bar["eroded_mass"]);
@@ -186,23 +186,23 @@ TEST_CASE("a penetration run restarted from a checkpoint ends with the same pene
   document["stop"] = {{"no_contact_time", 5e-7}};
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_penetration_restart.json");
   const fs::path whole = krug::test::scratch("penetration_whole");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = whole;
-  REQUIRE(krug::run::run_scenario(scenario, options).stopped_by == "stop rule");
+  REQUIRE(krug::output::run_scenario(scenario, options).stopped_by == "stop rule");
 
   const fs::path parts = krug::test::scratch("penetration_parts");
   std::atomic<bool> interrupt{false};
-  krug::run::RunOptions first;
+  krug::output::RunOptions first;
   first.output_directory = parts;
   first.interrupt = &interrupt;
   first.on_cycle = [&](const krug::Simulation& s, double) {
     if (s.time() >= 1e-6) interrupt = true;
     return true;
   };
-  REQUIRE(krug::run::run_scenario(scenario, first).message == "interrupted");
-  krug::run::RunOptions second;
+  REQUIRE(krug::output::run_scenario(scenario, first).message == "interrupted");
+  krug::output::RunOptions second;
   second.output_directory = parts;
-  CHECK(krug::run::restart_scenario(parts / "checkpoint.bin", second).stopped_by == "stop rule");
+  CHECK(krug::output::restart_scenario(parts / "checkpoint.bin", second).stopped_by == "stop rule");
   const Json a = krug::test::summary_without_timing(whole / "summary.json");
   const Json b = krug::test::summary_without_timing(parts / "summary.json");
   CHECK(a["penetration"] == b["penetration"]);

@@ -1,4 +1,4 @@
-// Checkpoints and restart, through the library API (krug::run::run_scenario / restart_scenario).
+// Checkpoints and restart, through the library API (krug::output::run_scenario / restart_scenario).
 // A restarted run must be the run that was never stopped: summary.json equal apart from
 // wall_seconds, and history.csv and run.pvd equal byte for byte. The scenario is E1
 // (examples/verification/slab_impact.json: two elastic slabs in contact that separate at 1.55 us),
@@ -11,14 +11,14 @@
 #include <atomic>
 
 #include "krug/core/error.hpp"
-#include "krug/io/checkpoint.hpp"
-#include "krug/run/run.hpp"
+#include "krug/output/checkpoint.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/io/scenario.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
-using krug::run::RunOptions;
-using krug::io::RunStatus;
+using krug::output::RunOptions;
+using krug::run::RunStatus;
 using krug::test::Json;
 using krug::test::read_text;
 using krug::test::summary_without_timing;
@@ -38,7 +38,7 @@ RunOptions to(const fs::path& directory) {
 }
 
 // Runs `scenario` into `directory`, interrupting it (as SIGINT would) once the time passes `at`.
-krug::io::RunResult interrupted_run(const krug::io::Scenario& scenario, const fs::path& directory, double at) {
+krug::run::RunResult interrupted_run(const krug::io::Scenario& scenario, const fs::path& directory, double at) {
   std::atomic<bool> interrupt{false};
   RunOptions options = to(directory);
   options.interrupt = &interrupt;
@@ -46,7 +46,7 @@ krug::io::RunResult interrupted_run(const krug::io::Scenario& scenario, const fs
     if (s.time() >= at) interrupt = true;
     return true;
   };
-  return krug::run::run_scenario(scenario, options);
+  return krug::output::run_scenario(scenario, options);
 }
 
 void check_same_run(const fs::path& reference, const fs::path& restarted) {
@@ -63,7 +63,7 @@ TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if nev
   const auto scenario = krug::io::load_scenario(file);
   const fs::path reference = krug::test::scratch("restart_reference");
   const fs::path stopped = krug::test::scratch("restart_interrupted");
-  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
 
   const auto first = interrupted_run(scenario, stopped, 1.2e-6);
   CHECK(first.status == RunStatus::failed);
@@ -77,7 +77,7 @@ TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if nev
   // The slabs are in contact at 1.2 us (separation at 1.55 us): the contact state matters.
   CHECK(interrupted["bodies"]["target"]["velocity"][0].get<double>() > 1.0);
 
-  const auto second = krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped));
+  const auto second = krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped));
   CHECK(second.status == RunStatus::completed);
   CHECK(second.warnings.empty());
   check_same_run(reference, stopped);
@@ -90,18 +90,18 @@ TEST_CASE("a periodic checkpoint restarts into another directory with the whole 
   const fs::path reference = krug::test::scratch("checkpoint_reference");
   const fs::path periodic = krug::test::scratch("checkpoint_periodic");
   const fs::path elsewhere = krug::test::scratch("checkpoint_elsewhere");
-  REQUIRE(krug::run::run_scenario(plain, to(reference)).status == RunStatus::completed);
-  const auto run = krug::run::run_scenario(with_checkpoints, to(periodic));
+  REQUIRE(krug::output::run_scenario(plain, to(reference)).status == RunStatus::completed);
+  const auto run = krug::output::run_scenario(with_checkpoints, to(periodic));
   REQUIRE(run.status == RunStatus::completed);
   // Taking checkpoints does not change the run.
   CHECK(summary_without_timing(periodic / "summary.json") == summary_without_timing(reference / "summary.json"));
   // The last checkpoint is the one at 3 us (taken at the first cycle end at or after it).
-  const krug::io::Checkpoint checkpoint = krug::io::read_checkpoint(periodic / "checkpoint.bin");
+  const krug::output::Checkpoint checkpoint = krug::output::read_checkpoint(periodic / "checkpoint.bin");
   CHECK(checkpoint.state.time >= 3.0e-6);
   CHECK(checkpoint.state.time < 3.1e-6);
   CHECK(checkpoint.progress.next_checkpoint_time == Approx(4.5e-6).margin(1e-15));
 
-  const auto restarted = krug::run::restart_scenario(periodic / "checkpoint.bin", to(elsewhere));
+  const auto restarted = krug::output::restart_scenario(periodic / "checkpoint.bin", to(elsewhere));
   CHECK(restarted.status == RunStatus::completed);
   check_same_run(reference, elsewhere);
   // The earlier snapshots were brought along.
@@ -113,7 +113,7 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
   const auto scenario = krug::io::load_scenario(file);
   const fs::path reference = krug::test::scratch("fracture_reference");
   const fs::path stopped = krug::test::scratch("fracture_interrupted");
-  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
   const Json whole = krug::test::read_json(reference / "summary.json");
   REQUIRE(whole["particles"]["count"].get<long>() > 0);
   // Stop when the first particles exist, so they are in the checkpoint.
@@ -124,9 +124,9 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
     if (s.particles().size() > 0) interrupt = true;
     return true;
   };
-  REQUIRE(krug::run::run_scenario(scenario, options).message == "interrupted");
-  REQUIRE(krug::io::read_checkpoint(stopped / "checkpoint.bin").state.particles.size() > 0);
-  CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(scenario, options).message == "interrupted");
+  REQUIRE(krug::output::read_checkpoint(stopped / "checkpoint.bin").state.particles.size() > 0);
+  CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   check_same_run(reference, stopped);
 }
 
@@ -138,7 +138,7 @@ TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates"
   const auto scenario = krug::io::load_scenario(file);
   const fs::path reference = krug::test::scratch("johnson_cook_reference");
   const fs::path stopped = krug::test::scratch("johnson_cook_interrupted");
-  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
   std::atomic<bool> interrupt{false};
   RunOptions options = to(stopped);
   options.interrupt = &interrupt;
@@ -147,11 +147,11 @@ TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates"
     if (std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; })) interrupt = true;
     return true;
   };
-  REQUIRE(krug::run::run_scenario(scenario, options).message == "interrupted");
-  const auto checkpoint = krug::io::read_checkpoint(stopped / "checkpoint.bin");
+  REQUIRE(krug::output::run_scenario(scenario, options).message == "interrupted");
+  const auto checkpoint = krug::output::read_checkpoint(stopped / "checkpoint.bin");
   const auto& damage = checkpoint.state.mesh.zones.damage;
   CHECK(std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; }));
-  CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   check_same_run(reference, stopped);
 }
 
@@ -164,7 +164,7 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
   auto refused = [&](const std::string& damaged, const std::string& expected) {
     krug::test::write_text(dir / "damaged.bin", damaged);
     try {
-      (void)krug::io::read_checkpoint(dir / "damaged.bin");
+      (void)krug::output::read_checkpoint(dir / "damaged.bin");
       FAIL("accepted a damaged checkpoint");
     } catch (const krug::InputError& e) {
       CHECK_THAT(e.what(), Catch::Contains(expected));
@@ -179,16 +179,16 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
   other_version[8] = 9;
   refused(other_version, "checksum");  // the version is covered by the checksum too
   refused("not a checkpoint at all, but long enough to have a trailer", "KRUGCKPT");
-  CHECK_THROWS_AS(krug::io::read_checkpoint(dir / "missing.bin"), krug::InputError);
+  CHECK_THROWS_AS(krug::output::read_checkpoint(dir / "missing.bin"), krug::InputError);
 
   // A checkpoint of another mesh.
   const auto other = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "sod.json");
-  CHECK_THROWS_AS(krug::run::restart_scenario(other, dir / "checkpoint.bin", to(krug::test::scratch("checkpoint_foreign"))),
+  CHECK_THROWS_AS(krug::output::restart_scenario(other, dir / "checkpoint.bin", to(krug::test::scratch("checkpoint_foreign"))),
                   krug::InputError);
   // An edited scenario of the same mesh continues, with a warning (here: a later end time).
   const auto longer = scenario_with(file, [](Json& d) { d["end_time"] = 5e-6; });
   const fs::path extended_dir = krug::test::scratch("checkpoint_extended");
-  const auto extended = krug::run::restart_scenario(longer, dir / "checkpoint.bin", to(extended_dir));
+  const auto extended = krug::output::restart_scenario(longer, dir / "checkpoint.bin", to(extended_dir));
   CHECK(extended.status == RunStatus::completed);
   CHECK(extended.warnings.size() == 1);
   CHECK(krug::test::read_json(extended_dir / "summary.json")["time"].get<double>() == Approx(5e-6).epsilon(1e-12));
@@ -215,7 +215,7 @@ TEST_CASE("gauges.csv survives a checkpoint and a restart byte for byte", "[app]
   const fs::path stopped = krug::test::scratch("gauges_interrupted");
   const fs::path checkpoints = krug::test::scratch("gauges_periodic");
   const fs::path elsewhere = krug::test::scratch("gauges_elsewhere");
-  REQUIRE(krug::run::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
   const std::string expected = read_text(reference / "gauges.csv");
   // Header, the first state, 40 rows at 1e-7 s over 4 us, the last state.
   CHECK(expected.rfind("time,cycle,mid_x,mid_y,mid_vx,mid_vy,mid_pressure,", 0) == 0);
@@ -225,11 +225,11 @@ TEST_CASE("gauges.csv survives a checkpoint and a restart byte for byte", "[app]
 
   interrupted_run(scenario, stopped, 1.2e-6);
   REQUIRE(fs::exists(stopped / "checkpoint.bin"));
-  REQUIRE(krug::run::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  REQUIRE(krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   CHECK(read_text(stopped / "gauges.csv") == expected);
 
-  REQUIRE(krug::run::run_scenario(periodic, to(checkpoints)).status == RunStatus::completed);
+  REQUIRE(krug::output::run_scenario(periodic, to(checkpoints)).status == RunStatus::completed);
   CHECK(read_text(checkpoints / "gauges.csv") == expected);
-  REQUIRE(krug::run::restart_scenario(checkpoints / "checkpoint.bin", to(elsewhere)).status == RunStatus::completed);
+  REQUIRE(krug::output::restart_scenario(checkpoints / "checkpoint.bin", to(elsewhere)).status == RunStatus::completed);
   CHECK(read_text(elsewhere / "gauges.csv") == expected);
 }

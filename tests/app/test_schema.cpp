@@ -22,7 +22,7 @@
 #include <set>
 
 #include "krug/core/error.hpp"
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/io/scenario.hpp"
 #include "schema_validator.hpp"
 #include "test_support.hpp"
@@ -268,9 +268,9 @@ TEST_CASE("summary.json of completed, failed and fracturing runs follows docs/su
     Json document = krug::test::read_json(cases[i].file);
     cases[i].edit(document);
     const fs::path dir = krug::test::scratch("summary_contract_" + std::to_string(i));
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = dir;
-    (void)krug::run::run_scenario(krug::io::parse_scenario(document.dump(), cases[i].file.string()), options);
+    (void)krug::output::run_scenario(krug::io::parse_scenario(document.dump(), cases[i].file.string()), options);
     const Json summary = krug::test::read_json(dir / "summary.json");
     CHECK(summary["status"] == cases[i].status);
     CHECK(summary.contains("penetration") == document.contains("penetration"));

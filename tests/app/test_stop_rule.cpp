@@ -8,7 +8,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "krug/run/run.hpp"
+#include "krug/output/run_files.hpp"
 #include "krug/run/stop_rule.hpp"
 #include "test_support.hpp"
 
@@ -88,10 +88,10 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
   const auto scenario = krug::io::parse_scenario(document.dump(), "slab_stop.json");
   const fs::path dir = krug::test::scratch("stop_rule_e1");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  const auto result = krug::run::run_scenario(scenario, options);
-  CHECK(result.status == krug::io::RunStatus::completed);
+  const auto result = krug::output::run_scenario(scenario, options);
+  CHECK(result.status == krug::run::RunStatus::completed);
   CHECK(result.stopped_by == "stop rule");
   const Json summary = krug::test::read_json(dir / "summary.json");
   CHECK(summary["status"] == "completed");
@@ -105,18 +105,84 @@ TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", 
   SECTION("restarted inside the window, it stops at the same cycle") {
     const fs::path stopped = krug::test::scratch("stop_rule_e1_restart");
     std::atomic<bool> interrupt{false};
-    krug::run::RunOptions first;
+    krug::output::RunOptions first;
     first.output_directory = stopped;
     first.interrupt = &interrupt;
     first.on_cycle = [&](const krug::Simulation& s, double) {
       if (s.time() >= 1.8e-6) interrupt = true;
       return true;
     };
-    REQUIRE(krug::run::run_scenario(scenario, first).message == "interrupted");
-    krug::run::RunOptions second;
+    REQUIRE(krug::output::run_scenario(scenario, first).message == "interrupted");
+    krug::output::RunOptions second;
     second.output_directory = stopped;
-    CHECK(krug::run::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
+    CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", second).stopped_by == "stop rule");
     CHECK(krug::test::summary_without_timing(stopped / "summary.json") == krug::test::summary_without_timing(dir / "summary.json"));
+  }
+}
+
+// The loop writes no file: it tells its observer (krug/run/observer.hpp) after every cycle, when a
+// checkpoint is due and at the end. An observer that only counts sees the run RunRecorder would write.
+class CountingObserver final : public krug::run::RunObserver {
+ public:
+  void cycle(const krug::Simulation&) override { ++cycles; }
+  std::filesystem::path checkpoint(const krug::Simulation& simulation, krug::run::RunProgress& progress) override {
+    ++checkpoints;
+    kept = progress;
+    checkpoint_time = simulation.time();
+    return "kept in memory";
+  }
+  void finish(const krug::Simulation&, const krug::run::RunResult& result) override {
+    ++finishes;
+    stopped_by = result.stopped_by;
+  }
+  long cycles = 0;
+  int checkpoints = 0, finishes = 0;
+  double checkpoint_time = 0.0;
+  krug::run::RunProgress kept;
+  std::string stopped_by;
+};
+
+TEST_CASE("the run loop reaches its outputs only through its observer (E1)", "[app][stop]") {
+  Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
+  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_observed.json");
+  REQUIRE_FALSE(fs::exists(scenario.output.directory));
+
+  krug::Simulation simulation(scenario.setup);
+  CountingObserver observer;
+  const auto result = krug::run::run_simulation(scenario, simulation, observer, {});
+  CHECK(result.stopped_by == "stop rule");
+  CHECK(observer.cycles == simulation.cycle());
+  CHECK(observer.checkpoints == 0);
+  CHECK(observer.finishes == 1);
+  CHECK(observer.stopped_by == "stop rule");
+  CHECK_FALSE(fs::exists(scenario.output.directory));  // nothing written
+
+  SECTION("an interruption is a checkpoint the observer keeps, with the loop's part of the progress") {
+    krug::Simulation interrupted(scenario.setup);
+    CountingObserver first;
+    std::atomic<bool> interrupt{false};
+    krug::run::RunOptions options;
+    options.interrupt = &interrupt;
+    options.on_cycle = [&](const krug::Simulation& s, double) {
+      if (s.time() >= 1.8e-6) interrupt = true;
+      return true;
+    };
+    const auto stopped = krug::run::run_simulation(scenario, interrupted, first, options);
+    CHECK(stopped.stopped_by == "interrupted");
+    CHECK(stopped.checkpoint == "kept in memory");
+    REQUIRE(first.checkpoints == 1);
+    CHECK(first.checkpoint_time == interrupted.time());
+    CHECK(first.kept.has_stop_state);
+    CHECK(first.kept.stop.armed);  // the flyer was hit before 1.8 us
+
+    // Continued from the kept progress (the state as it was), it stops where the whole run did.
+    CountingObserver second;
+    const auto resumed = krug::run::resume_simulation(scenario, interrupted, first.kept, second, {});
+    CHECK(resumed.stopped_by == "stop rule");
+    CHECK(interrupted.cycle() == simulation.cycle());
+    CHECK(interrupted.time() == simulation.time());
+    CHECK(first.cycles + second.cycles == observer.cycles);
   }
 }
 
@@ -126,24 +192,24 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
   const auto run = [&](double plane, const std::string& name) {
     document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}, {"clear_of", plane}};
     const auto scenario = krug::io::parse_scenario(document.dump(), name + ".json");
-    krug::run::RunOptions options;
+    krug::output::RunOptions options;
     options.output_directory = krug::test::scratch(name);
-    return krug::run::run_scenario(scenario, options);
+    return krug::output::run_scenario(scenario, options);
   };
   // A plane behind the flyer: clear from the start, so the rule stops the run as without the plane.
   const auto behind = run(-6e-3, "stop_rule_clear_behind");
   CHECK(behind.stopped_by == "stop rule");
   // The target's face: the flyer never passes it, so the run goes on to its end time.
   const auto face = run(0.0, "stop_rule_clear_face");
-  CHECK(face.status == krug::io::RunStatus::completed);
+  CHECK(face.status == krug::run::RunStatus::completed);
   CHECK(face.stopped_by == "end_time");
 }
 
 TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {
   const auto scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   const fs::path dir = krug::test::scratch("stop_rule_none");
-  krug::run::RunOptions options;
+  krug::output::RunOptions options;
   options.output_directory = dir;
-  CHECK(krug::run::run_scenario(scenario, options).stopped_by == "end_time");
+  CHECK(krug::output::run_scenario(scenario, options).stopped_by == "end_time");
   CHECK(krug::test::read_json(dir / "summary.json")["stopped_by"] == "end_time");
 }

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "krug/core/error.hpp"
-#include "krug/io/checkpoint.hpp"
+#include "krug/output/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "seed_scenario.hpp"
@@ -19,11 +19,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string bytes(reinterpret_cast<const char*>(data), size);
   constexpr std::size_t trailer = 16;  // checksum (8 bytes) and end marker (8 bytes)
   if (bytes.size() > trailer) {
-    const std::uint64_t sum = krug::io::fnv1a(bytes.substr(0, bytes.size() - trailer));
+    const std::uint64_t sum = krug::output::fnv1a(bytes.substr(0, bytes.size() - trailer));
     std::memcpy(bytes.data() + bytes.size() - trailer, &sum, sizeof sum);
   }
   try {
-    krug::io::Checkpoint checkpoint = krug::io::parse_checkpoint(bytes, "fuzz.bin");
+    krug::output::Checkpoint checkpoint = krug::output::parse_checkpoint(bytes, "fuzz.bin");
     krug::Simulation simulation(scenario.setup);
     simulation.restore(std::move(checkpoint.state));
   } catch (const krug::InputError&) {

@@ -2,7 +2,7 @@
 // its particles and damage. Usage: make_checkpoint_seed OUTPUT_FILE
 #include <cstdio>
 
-#include "krug/io/checkpoint.hpp"
+#include "krug/output/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "seed_scenario.hpp"
@@ -15,6 +15,6 @@ int main(int argc, char** argv) {
   const krug::io::Scenario scenario = krug::io::parse_scenario(krug::fuzz::seed_scenario, "seed.json");
   krug::Simulation simulation(scenario.setup);
   for (int cycle = 0; cycle < 40; ++cycle) simulation.step();
-  krug::io::write_checkpoint(argv[1], simulation.state(), krug::io::RunProgress{}, 1);
+  krug::output::write_checkpoint(argv[1], simulation.state(), krug::run::RunProgress{}, 1);
   return 0;
 }

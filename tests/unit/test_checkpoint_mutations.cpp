@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/checkpoint.hpp"
+#include "krug/output/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "../fuzz/seed_scenario.hpp"  // the checkpoint fuzzer's scenario: a fracturing flyer and plate
@@ -38,7 +38,7 @@ void write_bytes(const std::filesystem::path& file, const std::string& bytes) {
 // The checkpoint's trailer: the FNV-1a of the body (8 bytes), then the end marker (8 bytes).
 std::string resealed(std::string bytes) {
   const std::size_t body_end = bytes.size() - 16;
-  const std::uint64_t sum = krug::io::fnv1a(bytes.substr(0, body_end));
+  const std::uint64_t sum = krug::output::fnv1a(bytes.substr(0, body_end));
   std::memcpy(bytes.data() + body_end, &sum, sizeof sum);
   return bytes;
 }
@@ -53,12 +53,12 @@ TEST_CASE("resealed, edited checkpoints are refused or restore cleanly; none cra
       std::filesystem::temp_directory_path() / fmt::format("krug_checkpoint_mutations_{}", ::getpid());
   std::filesystem::create_directories(dir);
   const std::filesystem::path good = dir / "good.bin", edited = dir / "edited.bin";
-  krug::io::write_checkpoint(good, simulation.state(), krug::io::RunProgress{}, 1);
+  krug::output::write_checkpoint(good, simulation.state(), krug::run::RunProgress{}, 1);
   const std::string bytes = read_bytes(good);
   REQUIRE(bytes.size() > 1000);
   // The unedited checkpoint reads and restores.
   krug::Simulation restored(scenario.setup);
-  restored.restore(krug::io::read_checkpoint(good).state);
+  restored.restore(krug::output::read_checkpoint(good).state);
 
   std::mt19937_64 random(20261125);
   int refused = 0, accepted = 0;
@@ -82,7 +82,7 @@ TEST_CASE("resealed, edited checkpoints are refused or restore cleanly; none cra
     }
     write_bytes(edited, resealed(mutated));
     try {
-      krug::io::Checkpoint checkpoint = krug::io::read_checkpoint(edited);
+      krug::output::Checkpoint checkpoint = krug::output::read_checkpoint(edited);
       krug::Simulation target(scenario.setup);
       target.restore(std::move(checkpoint.state));
       ++accepted;  // a value changed inside a field: a different but well-formed state

@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "krug/io/scenario.hpp"
-#include "krug/run/run.hpp"
-#include "krug/solver/penetration.hpp"
+#include "krug/output/run_files.hpp"
+#include "krug/run/penetration.hpp"
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
@@ -60,7 +60,7 @@ struct PaperRun {
   double plug_thickness_on_axis = 0.0;      // monolithic: axial extent of the fast plate zones at r < 0.5 mm
   std::string status;
   std::string stopped_by;
-  PenetrationReport penetration;  // the library's penetration figures (summary.json "penetration")
+  run::PenetrationReport penetration;  // the library's penetration figures (summary.json "penetration")
 };
 
 double depth_in_plate(const Mesh& mesh, const Body& plate, Vec2 at) {
@@ -88,7 +88,7 @@ PaperRun run_paper_case(const std::string& file) {
   REQUIRE(scenario.stop.has_value());
   PaperRun run;
   std::size_t plates = 0;
-  run::RunOptions options;
+  output::RunOptions options;
   // Under the build tree's test folder (the working directory ctest gives), one folder per process, so
   // that two test runs at once (two build trees) never share it.
   options.output_directory = std::filesystem::current_path() /
@@ -154,9 +154,9 @@ PaperRun run_paper_case(const std::string& file) {
   plates = scenario.setup.bodies.size() - 1;
   run.first_damage.assign(plates, Onset{});
   run.first_damage_on_axis.assign(plates, Onset{});
-  const io::RunResult result = run::run_scenario(scenario, options);
+  const run::RunResult result = output::run_scenario(scenario, options);
   std::filesystem::remove_all(options.output_directory.parent_path());
-  run.status = result.status == io::RunStatus::completed ? "completed" : result.message;
+  run.status = result.status == run::RunStatus::completed ? "completed" : result.message;
   REQUIRE(result.penetration.has_value());
   run.penetration = *result.penetration;
   run.stopped_by = result.stopped_by;

@@ -11,7 +11,6 @@
 
 #include "krug/setup/scene.hpp"
 #include "krug/solver/gauges.hpp"
-#include "krug/solver/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::io {
@@ -65,6 +64,13 @@ struct StopRule {
   // along the impact direction no more than velocity_change x its initial speed). No headline figure
   // of a penetration run is then a bound.
   bool clear_of_targets = false;
+};
+
+// Scenario key "penetration": the projectile and the bodies it is to perforate (the figures measured
+// over the run: krug/run/penetration.hpp).
+struct PenetrationSetup {
+  Index projectile = 0;
+  std::vector<Index> targets;  // never empty, never the projectile
 };
 
 struct Scenario {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "krug/io/outputs.hpp"
+#include "krug/io/scenario.hpp"
 
 namespace krug::io {
 
@@ -62,15 +62,5 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
 // status "not run".
 void write_sweep_table(const std::filesystem::path& directory, const std::vector<SweepParameter>& parameters,
                        const std::vector<SweepVariant>& variants);
-
-// Resuming a study (`krug sweep`, `krug ballistic`): whether `directory` holds a finished run of the
-// scenario whose resolved text (every default filled in, Scenario::resolved_json) is
-// `resolved_json`: a summary.json that is whole JSON with status "completed" or "failed" (a failure is
-// deterministic: running it again gives the same), not stopped by an interruption or a request, next
-// to a scenario.resolved.json equal to `resolved_json` (as the run wrote it). Returns its status, or
-// nullopt: run it (no summary, a half-written one, an interrupted run, a run of another scenario).
-// A run removes its folder's summary.json when it starts, so a summary is never older than the
-// scenario.resolved.json beside it.
-std::optional<RunStatus> finished_run(const std::filesystem::path& directory, const std::string& resolved_json);
 
 }  // namespace krug::io

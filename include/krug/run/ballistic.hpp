@@ -117,11 +117,6 @@ struct BallisticStudy {
 BallisticStudy ballistic_search(const BallisticOptions& options, const BallisticEvaluate& evaluate,
                                 const std::function<void(const BallisticStudy&)>& on_round = {});
 
-// Writes DIR/ballistic.csv (every run, by speed) and DIR/ballistic.json (the study). `scenario` is
-// recorded in the JSON.
-void write_ballistic_results(const std::filesystem::path& directory, const BallisticStudy& study,
-                             const std::string& scenario);
-
 // The closing summary, one line per entry.
 std::vector<std::string> ballistic_summary_lines(const BallisticStudy& study);
 

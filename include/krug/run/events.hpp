@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "krug/io/scenario.hpp"
-#include "krug/solver/penetration.hpp"
+#include "krug/run/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::run {

@@ -18,8 +18,8 @@
 #include <utility>
 
 #include "krug/core/vec2.hpp"
-#include "krug/io/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
+#include "krug/run/state.hpp"
 
 namespace krug::run {
 
@@ -27,9 +27,9 @@ using io::StopRule;
 
 class StopMonitor {
  public:
-  // The window's state (kept in checkpoints, so its type lives in io: io::StopWindow).
-  using Sample = io::StopWindow::Sample;
-  using State = io::StopWindow;
+  // The window's state (kept in checkpoints: StopWindow, state.hpp).
+  using Sample = StopWindow::Sample;
+  using State = StopWindow;
 
   explicit StopMonitor(StopRule rule) : rule_(std::move(rule)) {}
 

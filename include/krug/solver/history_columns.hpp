@@ -2,7 +2,7 @@
 // The history column registry: every column of the run's history (history.csv), once, with its name,
 // whether it is repeated per body, the significant digits its value carries and the function that
 // reads the value from the simulation. It knows no file format: the history writer
-// (RunRecorder::history_header and write_history_row, src/io/outputs.cpp) walks it in this order, so a
+// (RunRecorder::history_header and write_history_row, src/output/outputs.cpp) walks it in this order, so a
 // new history column is one entry here plus its row in docs/outputs.md (docs/architecture.md,
 // "Adding an output field").
 #include <span>

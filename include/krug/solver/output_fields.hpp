@@ -2,7 +2,7 @@
 // The output field registry: every array the snapshots show (VTK point and cell data of the bodies,
 // point data of the free particles), once, with its name, its components per entry, where it lives
 // and the function that fills its values from the state. It knows no file format: the VTU and VTP
-// writers (src/io/vtk.cpp) walk it in this order, so a new output field is one entry here plus its
+// writers (src/output/vtk.cpp) walk it in this order, so a new output field is one entry here plus its
 // row in docs/outputs.md (docs/architecture.md, "Adding an output field").
 #include <cstdint>
 #include <span>

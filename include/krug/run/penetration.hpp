@@ -20,14 +20,13 @@
 #include <string>
 #include <vector>
 
+#include "krug/io/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 
-namespace krug {
+namespace krug::run {
 
-struct PenetrationSetup {
-  Index projectile = 0;
-  std::vector<Index> targets;  // never empty, never the projectile
-};
+// Which body is the projectile and which are its targets: read from the scenario's "penetration" block.
+using io::PenetrationSetup;
 
 // The geometry of a moment: where the projectile's piece and the targets' main pieces are.
 struct PenetrationMoment {
@@ -98,4 +97,4 @@ void observe_penetration(const Simulation& simulation, const PenetrationSetup& s
 PenetrationReport report_penetration(const Simulation& simulation, const PenetrationSetup& setup,
                                      const PenetrationRecord& record);
 
-}  // namespace krug
+}  // namespace krug::run

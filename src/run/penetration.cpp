@@ -1,4 +1,4 @@
-#include "krug/solver/penetration.hpp"
+#include "krug/run/penetration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "krug/core/error.hpp"
 
-namespace krug {
+namespace krug::run {
 
 namespace {
 
@@ -165,4 +165,4 @@ PenetrationReport report_penetration(const Simulation& simulation, const Penetra
   return r;
 }
 
-}  // namespace krug
+}  // namespace krug::run

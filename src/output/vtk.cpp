@@ -21,10 +21,10 @@
 #include <variant>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
+#include "krug/output/outputs.hpp"
 #include "krug/solver/output_fields.hpp"
 
-namespace krug::io {
+namespace krug::output {
 
 namespace {
 
@@ -224,4 +224,4 @@ void write_vtp(const Simulation& simulation, const std::filesystem::path& file, 
   write_text_atomically(file, vtk.finish("      </PointData>\n    </Piece>\n  </PolyData>\n"));
 }
 
-}  // namespace krug::io
+}  // namespace krug::output

@@ -1,5 +1,5 @@
 // Checkpoint files: a versioned binary image of SimulationState and of the run loop's progress.
-#include "krug/io/checkpoint.hpp"
+#include "krug/output/checkpoint.hpp"
 
 #include <cstring>
 #include <fstream>
@@ -9,9 +9,14 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/outputs.hpp"
+#include "krug/io/text_file.hpp"
 
-namespace krug::io {
+namespace krug::output {
+
+using io::write_text_atomically;
+using run::PenetrationRecord;
+using run::StopWindow;
+using run::TimeStepRecord;
 
 namespace {
 
@@ -24,13 +29,13 @@ constexpr std::uint32_t byte_order_mark = 0x01020304;
 // read_state() (and raise checkpoint_version), or a restart would silently lose it.
 // (NodeFields and ZoneFields are written through their registry, mesh.hpp.)
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(Particles) == 10 * 24,
-              "Particles changed: update src/io/checkpoint.cpp");
-static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed: update src/io/checkpoint.cpp");
-static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/io/checkpoint.cpp");
-static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/io/checkpoint.cpp");
+              "Particles changed: update src/output/checkpoint.cpp");
+static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed: update src/output/checkpoint.cpp");
+static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/output/checkpoint.cpp");
+static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(std::vector<double>) != 24 ||
                   sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 6 * 24 + 9 * 8,
-              "SimulationState changed: update src/io/checkpoint.cpp");
+              "SimulationState changed: update src/output/checkpoint.cpp");
 
 class Writer {
  public:
@@ -361,4 +366,4 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   return c;
 }
 
-}  // namespace krug::io
+}  // namespace krug::output

@@ -1,4 +1,4 @@
-#include "krug/io/outputs.hpp"
+#include "krug/output/outputs.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -15,23 +15,14 @@
 #include <nlohmann/json.hpp>
 
 #include "krug/core/error.hpp"
+#include "krug/output/checkpoint.hpp"
 #include "krug/solver/history_columns.hpp"
 
-namespace krug::io {
+namespace krug::output {
+
+using run::PenetrationReport;
 
 using Json = nlohmann::ordered_json;  // keeps the contract's field order
-
-void write_text_atomically(const std::filesystem::path& file, const std::string& text) {
-  const std::filesystem::path temporary = file.string() + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
-    out << text;
-    out.flush();
-    if (!out) throw InputError(fmt::format("{}: write failed (disk full?)", temporary.string()));
-  }
-  std::filesystem::rename(temporary, file);
-}
 
 namespace {
 
@@ -253,7 +244,10 @@ void LineFile::flush() {
 
 RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
                          PictureHook picture_hook)
-    : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
+    : directory_(std::move(directory)),
+      settings_(scenario.output),
+      scenario_hash_(fnv1a(scenario.resolved_json)),
+      picture_(std::move(picture_hook)) {
   open(scenario, true);
   history_.open(directory_ / "history.csv", false);
   append_history(history_header(simulation));
@@ -278,7 +272,10 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
 RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
                          PictureHook picture_hook, const RunProgress& resume,
                          const std::filesystem::path& previous_directory)
-    : directory_(std::move(directory)), settings_(scenario.output), picture_(std::move(picture_hook)) {
+    : directory_(std::move(directory)),
+      settings_(scenario.output),
+      scenario_hash_(fnv1a(scenario.resolved_json)),
+      picture_(std::move(picture_hook)) {
   open(scenario, false);
   std::error_code error;
   const bool same = std::filesystem::equivalent(directory_, previous_directory, error);
@@ -372,9 +369,8 @@ void RunRecorder::open(const Scenario& scenario, bool fresh) {
   write_text_atomically(directory_ / "scenario.resolved.json", scenario.resolved_json + "\n");
 }
 
-RunProgress RunRecorder::progress() {
+void RunRecorder::add_progress(RunProgress& p) {
   history_.flush();
-  RunProgress p;
   p.next_history_time = next_history_time_;
   p.next_snapshot_time = next_snapshot_time_;
   p.snapshots = snapshots_;
@@ -387,7 +383,13 @@ RunProgress RunRecorder::progress() {
     p.gauge_bytes = gauge_bytes_;
     p.gauge_impulses = gauges_->impulses();
   }
-  return p;
+}
+
+std::filesystem::path RunRecorder::checkpoint(const Simulation& simulation, RunProgress& progress) {
+  add_progress(progress);
+  std::filesystem::path file = directory_ / "checkpoint.bin";
+  write_checkpoint(file, simulation.state(), progress, scenario_hash_);
+  return file;
 }
 
 std::string RunRecorder::gauge_header() const {
@@ -475,7 +477,7 @@ void RunRecorder::count_time_step(const Simulation& simulation) {
   }
 }
 
-void RunRecorder::observe(const Simulation& simulation) {
+void RunRecorder::cycle(const Simulation& simulation) {
   count_time_step(simulation);
   if (gauges_) {
     if (gauges_->needs_every_step()) gauges_->accumulate(simulation);
@@ -527,4 +529,4 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   write_text_atomically(directory_ / "summary.json", summary_json(simulation, full));
 }
 
-}  // namespace krug::io
+}  // namespace krug::output

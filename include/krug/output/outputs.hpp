@@ -1,7 +1,8 @@
 #pragma once
 // Run outputs: summary.json (the fixed contract of docs/outputs.md), history.csv, VTK XML snapshots
 // (.vtu per snapshot with a .pvd collection) and the resolved scenario. Files are written under a
-// temporary name and renamed, so a reader never sees half a file.
+// temporary name and renamed, so a reader never sees half a file. RunRecorder is the run loop's
+// observer (krug/run/observer.hpp) that writes them, and the checkpoints (checkpoint.hpp).
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,26 +13,22 @@
 #include <string_view>
 #include <vector>
 
-#include "krug/io/checkpoint.hpp"
 #include "krug/io/scenario.hpp"
+#include "krug/io/text_file.hpp"
+#include "krug/run/observer.hpp"
+#include "krug/run/state.hpp"
 #include "krug/solver/simulation.hpp"
 
-namespace krug::io {
+namespace krug::output {
 
-enum class RunStatus { completed, failed };
-
-struct RunResult {
-  RunStatus status = RunStatus::completed;
-  std::string message;
-  double wall_seconds = 0.0;
-  // Why the run ended: "end_time", "stop rule", "interrupted", "failure", "max_cycles" or "request"
-  // (the caller's on_cycle said stop). summary.json field "stopped_by".
-  std::string stopped_by = "end_time";
-  std::filesystem::path checkpoint;    // the checkpoint written last, if any
-  std::vector<std::string> warnings;   // for the user (e.g. a restart whose scenario was edited)
-  std::optional<PenetrationReport> penetration;  // scenarios with a "penetration" block
-  TimeStepRecord time_steps;           // filled by the recorder
-};
+using io::OutputSettings;
+using io::Scenario;
+using io::VtkEncoding;
+using io::write_text_atomically;
+using run::RunProgress;
+using run::RunResult;
+using run::RunStatus;
+using run::TimeStepRecord;
 
 // Picture of the current state (the app draws PNGs with Cairo when it has it): called for the
 // initial state ("initial", or "state_00000" with pictures.every_snapshot), every snapshot
@@ -39,7 +36,6 @@ struct RunResult {
 using PictureHook = std::function<void(const Simulation& simulation, const std::filesystem::path& directory,
                                        const std::string& name)>;
 
-void write_text_atomically(const std::filesystem::path& file, const std::string& text);
 // The active zones as a VTK XML UnstructuredGrid (fields: docs/outputs.md).
 void write_vtu(const Simulation& simulation, const std::filesystem::path& file,
                VtkEncoding encoding = VtkEncoding::binary);
@@ -71,8 +67,9 @@ class LineFile {
   std::filesystem::path file_;
 };
 
-// Writes history rows and snapshots while a run goes on, and the final files when it ends.
-class RunRecorder {
+// Writes history rows and snapshots while a run goes on, checkpoints when the loop asks, and the
+// final files when it ends.
+class RunRecorder final : public run::RunObserver {
  public:
   RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
               PictureHook picture_hook = {});
@@ -81,21 +78,21 @@ class RunRecorder {
   // another one, with the snapshots listed so far) and the output schedule goes on where it was.
   RunRecorder(const Scenario& scenario, const Simulation& simulation, std::filesystem::path directory,
               PictureHook picture_hook, const RunProgress& resume, const std::filesystem::path& previous_directory);
-  ~RunRecorder();
-  RunRecorder(const RunRecorder&) = delete;
-  RunRecorder& operator=(const RunRecorder&) = delete;
+  ~RunRecorder() override;
 
-  void observe(const Simulation& simulation);  // after every cycle
-  void finish(const Simulation& simulation, const RunResult& result);
+  void cycle(const Simulation& simulation) override;  // after every cycle
+  // DIR/checkpoint.bin, with the recorder's part of `progress` added (history.csv is flushed first).
+  std::filesystem::path checkpoint(const Simulation& simulation, RunProgress& progress) override;
+  void finish(const Simulation& simulation, const RunResult& result) override;
   const std::filesystem::path& directory() const { return directory_; }
-  // The recorder's part of a checkpoint (history.csv is flushed first).
-  RunProgress progress();
 
  private:
   // The directory (locked for this run: a second run into it is refused) and scenario.resolved.json;
   // a fresh run first removes the outputs an earlier run left there (snapshots, pictures, plots,
   // summary, final state, checkpoint), so that none is mistaken for this run's.
   void open(const Scenario& scenario, bool fresh);
+  // The recorder's part of a checkpoint (history.csv and gauges.csv are flushed first).
+  void add_progress(RunProgress& progress);
   static std::string history_header(const Simulation& simulation);
   void append_history(const std::string& text);
   void write_history_row(const Simulation& simulation);
@@ -108,6 +105,7 @@ class RunRecorder {
 
   std::filesystem::path directory_;
   OutputSettings settings_;
+  std::uint64_t scenario_hash_ = 0;  // of the resolved scenario text, kept in checkpoints
   int lock_descriptor_ = -1;  // holds the directory's lock (flock on .krug-lock) while the recorder lives
   LineFile history_;
   std::uint64_t history_bytes_ = 0;  // written to history.csv so far
@@ -126,4 +124,14 @@ class RunRecorder {
   std::vector<double> gauge_values_;  // scratch row
 };
 
-}  // namespace krug::io
+// Resuming a study (`krug sweep`, `krug ballistic`): whether `directory` holds a finished run of the
+// scenario whose resolved text (every default filled in, Scenario::resolved_json) is
+// `resolved_json`: a summary.json that is whole JSON with status "completed" or "failed" (a failure is
+// deterministic: running it again gives the same), not stopped by an interruption or a request, next
+// to a scenario.resolved.json equal to `resolved_json` (as the run wrote it). Returns its status, or
+// nullopt: run it (no summary, a half-written one, an interrupted run, a run of another scenario).
+// A run removes its folder's summary.json when it starts, so a summary is never older than the
+// scenario.resolved.json beside it.
+std::optional<RunStatus> finished_run(const std::filesystem::path& directory, const std::string& resolved_json);
+
+}  // namespace krug::output

@@ -1,34 +1,23 @@
 #pragma once
-// Checkpoint files (DIR/checkpoint.bin): the SimulationState of a run and the run loop's own
-// progress (output schedule, snapshot list, length of history.csv, stop-rule window, wall time),
-// so that `krug run --restart` continues the run as if it had never stopped.
-//
-// Format (version 4), little-endian, native doubles:
-//   "KRUGCKPT"  u32 version  u32 0x01020304 (byte order)  u32 sizeof(double)  u32 sizeof(Index)
-//   u64 FNV-1a hash of the resolved scenario text the run started from
-//   the state and progress, field by field: a vector is a u64 count and its raw elements,
-//   a string a u64 length and its bytes
-//   u64 FNV-1a hash of every byte before it, then "KRUGEND!"
-// The file is written under a temporary name and renamed. A file that is truncated, corrupted,
-// of another version or from another machine layout is refused with an InputError.
+// The run loop's own state, besides the simulation: the stop rule's window, the record of what set the
+// time step, the progress a checkpoint keeps so that a restarted run goes on as if it had never
+// stopped, and the result of a run. Plain values: the loop (run.hpp) fills them, the writers above it
+// (krug/output/) store them in checkpoint.bin and summary.json.
 #include <cstdint>
+#include <deque>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <deque>
-
 #include "krug/core/vec2.hpp"
-#include "krug/solver/penetration.hpp"
-#include "krug/solver/simulation.hpp"
+#include "krug/run/penetration.hpp"
 
-namespace krug::io {
+namespace krug::run {
 
-inline constexpr std::uint32_t checkpoint_version = 5;
-
-// The stop rule's window as it stands (krug/run/stop_rule.hpp, StopMonitor): what a checkpoint keeps
-// of it. Each component's window extremes are kept as (time, value) samples in monotonic queues.
+// The stop rule's window as it stands (stop_rule.hpp, StopMonitor): what a checkpoint keeps of it.
+// Each component's window extremes are kept as (time, value) samples in monotonic queues.
 struct StopWindow {
   using Sample = std::pair<double, double>;
   bool started = false;
@@ -50,7 +39,9 @@ struct TimeStepRecord {
   std::int32_t smallest_limit = 0;        // TimeStepLimit
 };
 
-// What the run loop and the recorder need, besides the simulation, to continue their outputs.
+// What the run loop and its observer need, besides the simulation, to continue their outputs. The
+// loop fills the checkpoint schedule, the wall time, the stop window and the penetration record; the
+// observer (observer.hpp) the rest.
 struct RunProgress {
   double next_history_time = 0.0;
   double next_snapshot_time = 0.0;
@@ -71,19 +62,19 @@ struct RunProgress {
   std::vector<double> gauge_impulses;
 };
 
-struct Checkpoint {
-  SimulationState state;
-  RunProgress progress;
-  std::uint64_t scenario_hash = 0;
+enum class RunStatus { completed, failed };
+
+struct RunResult {
+  RunStatus status = RunStatus::completed;
+  std::string message;
+  double wall_seconds = 0.0;
+  // Why the run ended: "end_time", "stop rule", "interrupted", "failure", "max_cycles" or "request"
+  // (the caller's on_cycle said stop). summary.json field "stopped_by".
+  std::string stopped_by = "end_time";
+  std::filesystem::path checkpoint;    // the checkpoint written last, if any
+  std::vector<std::string> warnings;   // for the user (e.g. a restart whose scenario was edited)
+  std::optional<PenetrationReport> penetration;  // scenarios with a "penetration" block
+  TimeStepRecord time_steps;           // filled by the recorder
 };
 
-// FNV-1a, 64 bits.
-std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);
-
-void write_checkpoint(const std::filesystem::path& file, const SimulationState& state, const RunProgress& progress,
-                      std::uint64_t scenario_hash);
-Checkpoint read_checkpoint(const std::filesystem::path& file);
-// The same from the file's bytes; `name` labels the errors.
-Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name);
-
-}  // namespace krug::io
+}  // namespace krug::run
