@@ -66,7 +66,7 @@ class UniformGrid {
   // Calls visit(item) once for every item whose box overlaps `query`.
   template <class Visit>
   void query(const Box& query, Visit&& visit) const {
-    if (items_.empty()) return;
+    if (items_.empty() || !bounds_.overlaps(query)) return;  // every stored box lies within bounds_
     if (++epoch_ == 0) {
       std::fill(stamp_.begin(), stamp_.end(), 0);
       epoch_ = 1;
