@@ -96,34 +96,34 @@ void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, doub
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
                                                 Index pair) {
-  boxes_.clear();
-  for (const BoundarySegment& s : masters.segments) {
-    Box box;
-    box.include(position(s.a));
-    box.include(position(s.b));
-    box.include(predicted(s.a, dt_next));
-    box.include(predicted(s.b, dt_next));
-    boxes_.push_back(box.expanded(start_depth * norm(position(s.b) - position(s.a))));
+  MasterGrid& master = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())];
+  if (!master.built) {
+    master.boxes.clear();
+    for (const BoundarySegment& s : masters.segments) {
+      Box box;
+      box.include(position(s.a));
+      box.include(position(s.b));
+      box.include(predicted(s.a, dt_next));
+      box.include(predicted(s.b, dt_next));
+      master.boxes.push_back(box.expanded(start_depth * norm(position(s.b) - position(s.a))));
+    }
+    master.grid.build(master.boxes);
+    master.built = true;
   }
-  grid_.build(boxes_);
+  const UniformGrid& grid = master.grid;
   // Each slave node's candidates are gathered, then kept only where the node can touch the face: a
   // node beside a segment's end and behind its line (past a convex corner of the master) is never in
   // contact with that face, and a node behind a face's line is handled by the master's shallowest face
   // it projects onto (the closest feature, as for particles: contact_geometry). Without this, a node
   // landing on a face near a convex corner took the side face's line distance as a pre-existing
   // overlap and was pushed sideways.
-  struct Found {
-    Candidate candidate;
-    double gap;   // signed distance from the face's line at x^n
-    bool over;    // projects onto the segment at x^n (within end_slack)
-  };
-  std::vector<Found> found;
+  std::vector<Found>& found = found_;
   for (Index c : slaves.nodes) {
     found.clear();
     Box swept;
     swept.include(position(c));
     swept.include(predicted(c, dt_next));
-    grid_.query(swept, [&](std::size_t k) {
+    grid.query(swept, [&](std::size_t k) {
       const BoundarySegment& s = masters.segments[k];
       if (s.a == c || s.b == c) return;
       const Vec2 a = position(s.a), b = position(s.b);
@@ -170,7 +170,8 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   };
   // Particles against the segments of every body.
   boxes_.clear();
-  std::vector<const BoundarySegment*> segments;
+  std::vector<const BoundarySegment*>& segments = particle_segments_;
+  segments.clear();
   for (const BodyBoundary& boundary : boundaries_) {
     for (const BoundarySegment& s : boundary.segments) {
       Box box;
@@ -247,6 +248,8 @@ void ContactSolver::add_particle_candidates(double dt_next) {
 
 void ContactSolver::find_candidates(double dt_next) {
   candidates_.clear();
+  master_grids_.resize(boundaries_.size());
+  for (MasterGrid& m : master_grids_) m.built = false;
   const bool summation = setup_.controls.method == ReactionMethod::summation;
   for (std::size_t k = 0; k < setup_.pairs.size(); ++k) {
     const BodyPair& pair = setup_.pairs[k];

@@ -24,6 +24,20 @@ bool has_inverted_corner(const quad::Corners& x, const ZoneCorners& n) {
   return false;
 }
 
+// ErosionLimits::collapsed on quad::smallest_altitude, with a test first that needs neither the square
+// root nor the division: area^2 > (ratio h0)^2 longest^2 (with a relative margin of 1e-9, far above the
+// rounding) means the altitude is above its limit. Otherwise the altitude is computed as before.
+bool collapsed(const fracture::ErosionLimits& erosion, const quad::Corners& x, double area, double initial_altitude) {
+  const double limit = erosion.altitude_ratio * initial_altitude;
+  double longest = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    const Vec2 e = x[quad::next(p)] - x[p];
+    longest = std::max(longest, dot(e, e));
+  }
+  if (area > 0.0 && area * area > (limit * limit) * longest * (1.0 + 1e-9)) return false;
+  return erosion.collapsed(quad::smallest_altitude(x, area), initial_altitude);
+}
+
 }  // namespace
 
 void Simulation::evaluate_fracture() {
@@ -61,14 +75,8 @@ bool Simulation::face_is_free(Index zone, int edge) const {
 void Simulation::convert_fractured_zones() {
   ZoneFields& zones = state_.mesh.zones;
   const FractureControls& fc = controls_.fracture;
-  // Median zone time step, for the floor below which damaged zones convert instead of driving dt.
-  std::vector<double> steps;
   bool any_damaged = false;
-  for (Index z = 0; z < zones.size(); ++z) {
-    if (!zones.active[z]) continue;
-    steps.push_back(zones.stable_time_step[z]);
-    any_damaged = any_damaged || zones.damaged[z];
-  }
+  for (Index z = 0; z < zones.size() && !any_damaged; ++z) any_damaged = zones.active[z] && zones.damaged[z];
   std::vector<std::pair<Index, ConversionRule>> chosen;
   // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
   for (const Body& body : bodies_) {
@@ -78,17 +86,43 @@ void Simulation::convert_fractured_zones() {
       if (!zones.active[z] || zones.damaged[z]) continue;
       const quad::Corners x = state_.mesh.corner_positions(z);
       if (erosion.strained(zones.plastic_strain[z]) ||
-          erosion.collapsed(quad::smallest_altitude(x, zones.area[z]), zones.initial_altitude[z]) ||
+          collapsed(erosion, x, zones.area[z], zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
         chosen.emplace_back(z, ConversionRule::erosion);
       }
     }
   }
   if (!any_damaged && chosen.empty()) return;
+  // Damaged zones whose step is below time_step_floor_ratio x the median zone step (of the active
+  // zones) convert instead of driving dt. The median is needed only if the smallest step of a damaged
+  // zone can be below that floor: with r x v rounded (monotone in v), the floor r x median is at most
+  // that smallest step when more than half of the active zones have r x step at most it, and then no
+  // damaged zone is below it. Otherwise the median is taken as before.
+  const double ratio = fc.time_step_floor_ratio;
   double median_step = 0.0;
   if (any_damaged) {
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-    median_step = steps[steps.size() / 2];
+    double smallest_damaged = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      if (!fracture::enabled(failure_laws_[b])) continue;
+      for (Index z = bodies_[b].zone_begin; z < bodies_[b].zone_end; ++z) {
+        if (zones.active[z] && zones.damaged[z]) smallest_damaged = std::min(smallest_damaged, zones.stable_time_step[z]);
+      }
+    }
+    Index active = 0, below = 0;
+    for (Index z = 0; z < zones.size(); ++z) {
+      if (!zones.active[z]) continue;
+      ++active;
+      below += ratio * zones.stable_time_step[z] <= smallest_damaged ? 1 : 0;
+    }
+    if (below <= active / 2) {
+      std::vector<double> steps;
+      steps.reserve(static_cast<std::size_t>(active));
+      for (Index z = 0; z < zones.size(); ++z) {
+        if (zones.active[z]) steps.push_back(zones.stable_time_step[z]);
+      }
+      std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+      median_step = steps[steps.size() / 2];
+    }
   }
 
   // Choose the whole layer first, then convert: one boundary layer per step.
@@ -110,7 +144,7 @@ void Simulation::convert_fractured_zones() {
         chosen.emplace_back(z, ConversionRule::surface);
       } else if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
                  has_inverted_corner(x, zones.corners[z]) ||
-                 zones.stable_time_step[z] < fc.time_step_floor_ratio * median_step) {
+                 zones.stable_time_step[z] < ratio * median_step) {
         chosen.emplace_back(z, ConversionRule::interior);  // a documented deviation from the paper, counted
       }
     }

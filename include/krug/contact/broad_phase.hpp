@@ -57,7 +57,8 @@ class UniformGrid {
     for (std::size_t i = 0; i < n; ++i) visit_cells(boxes[i], [&](std::size_t c) { ++cell_start_[c + 1]; });
     for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
     items_.resize(cell_start_.back());
-    std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    std::vector<std::uint32_t>& fill = fill_;
+    fill.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
       visit_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = static_cast<std::uint32_t>(i); });
     }
@@ -66,7 +67,7 @@ class UniformGrid {
   // Calls visit(item) once for every item whose box overlaps `query`.
   template <class Visit>
   void query(const Box& query, Visit&& visit) const {
-    if (items_.empty()) return;
+    if (items_.empty() || !bounds_.overlaps(query)) return;  // every stored box lies within bounds_
     if (++epoch_ == 0) {
       std::fill(stamp_.begin(), stamp_.end(), 0);
       epoch_ = 1;
@@ -101,6 +102,7 @@ class UniformGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> items_;
+  std::vector<std::uint32_t> fill_;  // build's scratch: the next free slot of each cell
   mutable std::vector<std::uint32_t> stamp_;
   mutable std::uint32_t epoch_ = 0;
 };

@@ -197,6 +197,21 @@ class ContactSolver {
   std::vector<Index> working_;  // candidates the later Gauss-Seidel sweeps visit
   std::vector<Box> boxes_;
   UniformGrid grid_;
+  // The node-segment broad phase of each body as a master, built at most once per find_candidates (a
+  // body that is the master of two pairs, as in a two-body pair beside a self-contact pair, shares it).
+  struct MasterGrid {
+    std::vector<Box> boxes;
+    UniformGrid grid;
+    bool built = false;
+  };
+  std::vector<MasterGrid> master_grids_;
+  struct Found {
+    Candidate candidate;
+    double gap;  // signed distance from the face's line at x^n
+    bool over;   // projects onto the segment at x^n (within end_slack)
+  };
+  std::vector<Found> found_;                               // one slave node's candidates (scratch)
+  std::vector<const BoundarySegment*> particle_segments_;  // the segments of the particles' broad phase
   std::vector<double> reaction_x_, reaction_y_;
   std::vector<double> overlap_x_, overlap_y_;
   std::vector<ContactPoint> touched_;

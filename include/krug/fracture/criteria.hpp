@@ -140,6 +140,20 @@ inline Criterion exceeded(const FractureLimits& limits, const Stretches& stretch
   return Criterion::none;
 }
 
+// For the driver's shortcut (damage.hpp): a zone whose principal stretches are all below this bound
+// and not negative fails neither stretch criterion (the elongation's 1 + eps_* and the shear's gamma_*:
+// lambda_max - lambda_min <= lambda_max), so its stretches need not be evaluated; infinity when neither
+// criterion is on.
+inline double stretch_bound(const FractureLimits& limits) {
+  return std::min(1.0 + limits.elongation, limits.shear_strain);
+}
+
+// Whether the stress criteria are on: the principal stresses are evaluated only then (a disabled limit
+// is infinite, and no stress exceeds it).
+inline bool reads_principal_stress(const FractureLimits& limits) {
+  return std::isfinite(limits.tensile_stress) || std::isfinite(limits.compressive_stress);
+}
+
 // Scenario parameters (krug/core/parameters.hpp), in the order they are read: each limit is optional
 // and off (infinite) when absent; chi_* defaults to 0.03.
 constexpr auto parameters(std::type_identity<FractureLimits>) {

@@ -23,6 +23,43 @@ namespace krug::fracture {
 // the hoop stretch r/R with the zone's mean radii V/A in axisymmetric geometry, 1 in planar strain).
 Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric);
 
+// True when every principal stretch of zone z (as zone_stretches gives them) is certainly below
+// `limit` and none is negative, decided without a square root: with s = limit^2 (less a relative margin
+// of 1e-9, far above the rounding of either evaluation), lambda_max^2 < s exactly when s lies above
+// the mean tr(C)/2 of the two squared stretches and (s - lambda_max^2)(s - lambda_min^2) =
+// s^2 - tr(C) s + det(F)^2 > 0 (here required above a bound on its rounding error); the hoop stretch
+// (V/A) / (V0/A0) is compared multiplied out. A zone near the limit, inverted or degenerate gives false.
+inline bool stretches_below(const Mesh& mesh, Index z, bool axisymmetric, double limit) {
+  const ZoneFields& zones = mesh.zones;
+  const NodeFields& nodes = mesh.nodes;
+  const ZoneCorners& n = zones.corners[z];
+  const quad::Corners x = mesh.corner_positions(z);
+  const quad::Corners x0{Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
+                         Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
+  const double initial_area = quad::area(x0);
+  const double bound = limit * (1.0 - 1e-9);
+  if (!(initial_area > 0.0)) return false;
+  const quad::Tensor2 a0f = quad::outer_sum(x, quad::area_gradient(x0));  // A0 F
+  const double inv = 1.0 / initial_area;
+  const double f11 = a0f.xx * inv, f12 = a0f.xy * inv, f21 = a0f.yx * inv, f22 = a0f.yy * inv;
+  const double trace = f11 * f11 + f12 * f12 + f21 * f21 + f22 * f22;  // tr(C), C = F^T F
+  const double det = f11 * f22 - f12 * f21;
+  const double s = bound * bound;
+  if (!(0.5 * trace < s)) return false;
+  const double product = (s - trace) * s + det * det;
+  if (!(product > 1e-12 * (s * s + trace * s + det * det))) return false;
+  if (!axisymmetric) return 1.0 < bound;
+  double sixfold_volume = 0.0;  // 6 V0, as quad::axisymmetric_volume sums it
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 a = x0[i];
+    const Vec2 b = x0[quad::next(i)];
+    sixfold_volume += cross(a, b) * (a.y + b.y);
+  }
+  const double volume = zones.volume[z], area = zones.area[z];
+  if (!(area > 0.0 && volume >= 0.0 && sixfold_volume > 0.0)) return false;
+  return 6.0 * volume * initial_area < bound * area * sixfold_volume;
+}
+
 // Puts zone z into the damaged state at time `now`, recording `why`.
 void damage_zone(ZoneFields& zones, Index z, Criterion why, double now);
 
@@ -41,13 +78,26 @@ long damage_zones(Mesh& mesh, Index zone_begin, Index zone_end, const Law& law, 
   const bool axisymmetric = geometry == GeometryKind::axisymmetric;
   ZoneFields& zones = mesh.zones;
   long damaged = 0;
+  double stretch_limit = std::numeric_limits<double>::infinity();
+  bool stress_read = true;
+  if constexpr ((needs & input::stretches) != 0) stretch_limit = stretch_bound(law);
+  if constexpr ((needs & input::principal_stress) != 0) stress_read = reads_principal_stress(law);
   for (Index z = zone_begin; z < zone_end; ++z) {
     if (!zones.active[z] || zones.damaged[z]) continue;
     PointState point;
-    if constexpr ((needs & input::stretches) != 0) point.stretch = zone_stretches(mesh, z, axisymmetric);
+    if constexpr ((needs & input::stretches) != 0) {
+      // Below the law's stretch bound the stretches cannot fire and stay at the identity (which fires
+      // nothing either): the same criterion fires as with the exact stretches.
+      if (!(stretch_limit == std::numeric_limits<double>::infinity() ||
+            stretches_below(mesh, z, axisymmetric, stretch_limit))) {
+        point.stretch = zone_stretches(mesh, z, axisymmetric);
+      }
+    }
     if constexpr ((needs & input::principal_stress) != 0) {
-      point.stress = principal_stress(zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z],
-                                      zones.deviator_zz[z], zones.pressure[z]);
+      if (stress_read) {
+        point.stress = principal_stress(zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z],
+                                        zones.deviator_zz[z], zones.pressure[z]);
+      }
     }
     if constexpr ((needs & input::specific_energy) != 0) point.specific_energy = zones.specific_energy[z];
     if constexpr ((needs & input::pressure) != 0) point.pressure = zones.pressure[z];

@@ -100,13 +100,28 @@ inline double rotation_angle(double spin, double dt, StressRotation method = Str
   return method == StressRotation::hughes_winget ? 2.0 * std::atan(0.5 * spin * dt) : spin * dt;
 }
 
+// cos x and sin x. Where |x| <= 1/16 (a rotation over one time step is far smaller) by the Taylor
+// polynomials to x^8 and x^9, in Horner form: the first omitted terms, x^10/10! < 3e-19 and
+// x^11/11! < 2e-20 |x|, are below the round-off of the results, so these are cos and sin to round-off,
+// without a call to the library's; std::cos and std::sin beyond.
+inline void cos_sin(double x, double& cos_x, double& sin_x) {
+  if (std::abs(x) <= 0.0625) {
+    const double x2 = x * x;
+    cos_x = 1.0 + x2 * (-1.0 / 2.0 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
+    sin_x = x + x * (x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0)))));
+    return;
+  }
+  cos_x = std::cos(x);
+  sin_x = std::sin(x);
+}
+
 // s' = R s R^T, R the counter-clockwise rotation by `angle` in the computational plane; zz is unchanged.
 // Written in the double angle so the in-plane trace xx + yy is kept to round-off.
 inline Deviator rotate_deviator(const Deviator& s, double angle) {
   const double mean = 0.5 * (s.xx + s.yy);
   const double half_difference = 0.5 * (s.xx - s.yy);
-  const double cos2 = std::cos(2.0 * angle);
-  const double sin2 = std::sin(2.0 * angle);
+  double cos2 = 1.0, sin2 = 0.0;
+  cos_sin(2.0 * angle, cos2, sin2);
   const double axial = half_difference * cos2 - s.xy * sin2;
   return {mean + axial, mean - axial, half_difference * sin2 + s.xy * cos2, s.zz};
 }

@@ -1,0 +1,118 @@
+// Per-zone kernels of the strength and fracture steps, in ns per zone (docs/performance.md, "The paper's
+// case"): arrays of 4096 zones' worth of inputs, no mesh loop around them.
+//
+// rotation/polynomial, rotation/library: the objective rotation of a deviator by a small angle
+// (krug::rotate_deviator: cos and sin of the double angle by their Taylor polynomials, krug::cos_sin)
+// against the same rotation with std::cos and std::sin. Angles up to 1e-3 rad, as over one time step.
+//
+// stretches/exact, stretches/bound: the principal stretches of a quad from its initial shape
+// (krug::fracture::zone_stretches) against the root-free test that they are below a limit
+// (krug::fracture::stretches_below), on a mesh of 64 x 64 RZ zones sheared by up to 5 %.
+//
+//   build/benchmarks/zone_kernels --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "krug/fracture/damage.hpp"
+#include "krug/material/strength.hpp"
+#include "krug/mesh/generators.hpp"
+#include "krug/mesh/quad.hpp"
+
+namespace {
+
+constexpr int zone_count = 4096;
+
+std::vector<krug::Deviator> deviators() {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> stress(-1e8, 1e8);
+  std::vector<krug::Deviator> s(zone_count);
+  for (krug::Deviator& d : s) {
+    d.xx = stress(random);
+    d.yy = stress(random);
+    d.xy = stress(random);
+    d.zz = -(d.xx + d.yy);
+  }
+  return s;
+}
+
+std::vector<double> angles() {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> angle(-1e-3, 1e-3);
+  std::vector<double> a(zone_count);
+  for (double& x : a) x = angle(random);
+  return a;
+}
+
+krug::Deviator rotate_with_library(const krug::Deviator& s, double angle) {
+  const double mean = 0.5 * (s.xx + s.yy);
+  const double half_difference = 0.5 * (s.xx - s.yy);
+  const double cos2 = std::cos(2.0 * angle);
+  const double sin2 = std::sin(2.0 * angle);
+  const double axial = half_difference * cos2 - s.xy * sin2;
+  return {mean + axial, mean - axial, half_difference * sin2 + s.xy * cos2, s.zz};
+}
+
+template <bool polynomial>
+void rotation(benchmark::State& state) {
+  const std::vector<krug::Deviator> s = deviators();
+  const std::vector<double> a = angles();
+  std::vector<krug::Deviator> out(zone_count);
+  for (auto _ : state) {
+    for (int z = 0; z < zone_count; ++z) {
+      out[z] = polynomial ? krug::rotate_deviator(s[z], a[z]) : rotate_with_library(s[z], a[z]);
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["ns_per_zone"] =
+      benchmark::Counter(static_cast<double>(zone_count), benchmark::Counter::kIsIterationInvariantRate |
+                                                              benchmark::Counter::kInvert);
+}
+
+krug::Mesh sheared_mesh() {
+  krug::Mesh mesh;
+  std::vector<double> lines(65);
+  for (int i = 0; i <= 64; ++i) lines[static_cast<std::size_t>(i)] = 0.01 * i / 64.0;
+  krug::generate::rectangle(mesh, lines, lines, 0);
+  mesh.nodes.x0 = mesh.nodes.x;
+  mesh.nodes.y0 = mesh.nodes.y;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> shear(0.0, 0.05);
+  for (krug::Index n = 0; n < mesh.nodes.size(); ++n) mesh.nodes.x[n] += shear(random) * mesh.nodes.y[n];
+  for (krug::Index z = 0; z < mesh.zones.size(); ++z) {
+    const krug::quad::Corners x = mesh.corner_positions(z);
+    mesh.zones.area[z] = krug::quad::area(x);
+    mesh.zones.volume[z] = krug::quad::axisymmetric_volume(x);
+  }
+  return mesh;
+}
+
+template <bool bound>
+void stretches(benchmark::State& state) {
+  const krug::Mesh mesh = sheared_mesh();
+  const krug::Index zones = mesh.zones.size();
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (krug::Index z = 0; z < zones; ++z) {
+      if constexpr (bound) {
+        sum += krug::fracture::stretches_below(mesh, z, true, 1.4) ? 1.0 : 0.0;
+      } else {
+        sum += krug::fracture::zone_stretches(mesh, z, true).largest();
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["ns_per_zone"] = benchmark::Counter(static_cast<double>(zones), benchmark::Counter::kIsIterationInvariantRate |
+                                                                                     benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+BENCHMARK(rotation<true>)->Name("rotation/polynomial");
+BENCHMARK(rotation<false>)->Name("rotation/library");
+BENCHMARK(stretches<false>)->Name("stretches/exact");
+BENCHMARK(stretches<true>)->Name("stretches/bound");
+BENCHMARK_MAIN();
