@@ -29,6 +29,8 @@ import sys
 
 import numpy as np
 
+import krug_vtk  # scripts/krug_vtk.py
+
 LEAD_DENSITY = 11340.0  # the library set "paper-lead"
 PAPER_ELONGATION = 0.4  # the library set "paper-al6061-t6"
 BULLET_RADIUS = 2.78e-3
@@ -144,8 +146,7 @@ def scenario(args):
 
 def bullet_tip(run_dir):
     """Axial position of the bullet's tip (lowest z of its nodes) in the final state."""
-    import meshio
-    mesh = meshio.read(os.path.join(run_dir, "final.vtu"))
+    mesh = krug_vtk.read(os.path.join(run_dir, "final.vtu"))
     body = mesh.point_data["body"].ravel()
     z = mesh.points[:, 0]
     return float(z[body == 0].min())
@@ -169,8 +170,7 @@ def core_velocity(run_dir):
     The bullet body's own mean velocity includes the lead squeezed out at the rim of the mushroom
     (a thin sheet that the hole's edge shaves off and throws back); the core is what a chronograph
     behind the target would time."""
-    import meshio
-    mesh = meshio.read(os.path.join(run_dir, "final.vtu"))
+    mesh = krug_vtk.read(os.path.join(run_dir, "final.vtu"))
     quads, centroid, mass = cell_geometry(mesh)
     body = mesh.cell_data_dict["body"]["quad"].ravel()
     velocity_z = mesh.point_data["velocity"][:, 0][quads].mean(axis=1)
@@ -183,14 +183,13 @@ def damage_onsets(run_dir, scenario):
     with where it happened as a fraction of the plate's thickness from its front face (0) to its rear
     face (1), between the centroids of the plate's cells at that radius in that snapshot. From every snapshot (a zone converted before a snapshot is missed: snapshots come every
     end_time / 20)."""
-    import meshio
     import xml.etree.ElementTree as ET
     collection = ET.parse(os.path.join(run_dir, "run.pvd")).getroot().find("Collection")
     files = [os.path.join(run_dir, ds.get("file")) for ds in collection if ds.get("part") == "0"]
     plates = scenario["bodies"][1:]
     best = {}
     for f in files:
-        mesh = meshio.read(f)
+        mesh = krug_vtk.read(f)
         _, centroid, _ = cell_geometry(mesh)
         body = mesh.cell_data_dict["body"]["quad"].ravel()
         onset = mesh.cell_data_dict["damage_onset_time"]["quad"].ravel()
@@ -311,7 +310,6 @@ def velocity_history(run_dirs, csv_path):
     bullet radius) and of the whole bullet body (all its cells), mass-weighted, towards the target.
     Runs with the same end time have their snapshots at the same moments, so runs with and without
     lead erosion compare moment by moment."""
-    import meshio
     import xml.etree.ElementTree as ET
     with open(csv_path, "w") as out:
         out.write("run,time_us,core_velocity,body_velocity,bullet_cells\n")
@@ -320,7 +318,7 @@ def velocity_history(run_dirs, csv_path):
             for ds in collection:
                 if ds.get("part") != "0":
                     continue
-                mesh = meshio.read(os.path.join(run, ds.get("file")))
+                mesh = krug_vtk.read(os.path.join(run, ds.get("file")))
                 quads, centroid, mass = cell_geometry(mesh)
                 body = mesh.cell_data_dict["body"]["quad"].ravel()
                 velocity_z = mesh.point_data["velocity"][:, 0][quads].mean(axis=1)
@@ -334,11 +332,7 @@ def velocity_history(run_dirs, csv_path):
 
 def read_particles(vtp_path):
     """Centres (z, r), radii and bodies of origin from Krug's VTK PolyData particle file."""
-    import meshio
-    try:
-        data = meshio.read(vtp_path)
-    except Exception:  # a file with no particles
-        return [], [], []
+    data = krug_vtk.read(vtp_path)
     centres = [(float(p[0]), float(p[1])) for p in data.points]
     radius = data.point_data.get("radius")
     body = data.point_data.get("body")
@@ -356,7 +350,6 @@ def figures(run_dir, png_path, count, field, vmax=None):
     import matplotlib.pyplot as plt
     from matplotlib.collections import PatchCollection, PolyCollection
     from matplotlib.patches import Circle
-    import meshio
     import numpy as np
     import xml.etree.ElementTree as ET
     collection = ET.parse(os.path.join(run_dir, "run.pvd")).getroot().find("Collection")
@@ -366,7 +359,7 @@ def figures(run_dir, png_path, count, field, vmax=None):
         (meshes if ds.get("part") == "0" else particles)[t] = os.path.join(run_dir, ds.get("file"))
     times = sorted(meshes)
     picks = [times[round(i * (len(times) - 1) / max(count - 1, 1))] for i in range(count)]
-    data = {t: meshio.read(meshes[t]) for t in picks}
+    data = {t: krug_vtk.read(meshes[t]) for t in picks}
     # One window for all moments: the union of the pictured meshes, clipped to 10 mm behind the rear
     # face and 5 bullet radii off the axis (the plates' graded outer parts carry nothing to see).
     scenario = json.load(open(os.path.join(run_dir, "scenario.resolved.json")))

@@ -197,7 +197,7 @@ def mesh_spread(outdir):
     return {k: abs(v["10"] - v["20"]) / v["10"] for k, v in values.items() if "10" in v and "20" in v}
 
 
-def plot_fig6(outdir):
+def plot_fig6(outdir, zones):
     """dU/U0 of the bullet's largest piece against H, with the relative 10-to-20 zones per mm change of
     the 2.6 g, 3 mm case as error bars (mesh_spread). Open markers: runs whose bullet had not cleared
     the plates when they ended (summary "penetration.final" false)."""
@@ -223,7 +223,7 @@ def plot_fig6(outdir):
                         mec=colour, ls="none", label=f"{kind}: not final (ended before clearing)")
         ax.set_xlabel("total thickness H (mm)")
         ax.set_ylabel("dU / U0 (bullet's largest piece)")
-        ax.set_title(f"{mass.replace('g', ' g')} lead bullet, 355 m/s, 10 zones per mm")
+        ax.set_title(f"{mass.replace('g', ' g')} lead bullet, 355 m/s, {zones} zones per mm")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
@@ -272,7 +272,7 @@ def main():
             subprocess.run([sys.executable, PAPER_CASE, "report", *runs, "--csv", os.path.join(args.outdir, f"{group}.csv")],
                            check=True)
     if "fig6" in groups and os.path.exists(os.path.join(args.outdir, "fig6.csv")):
-        plot_fig6(args.outdir)
+        plot_fig6(args.outdir, args.zones_per_mm)
 
 
 if __name__ == "__main__":
