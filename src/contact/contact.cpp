@@ -100,12 +100,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
   if (!master.built) {
     master.boxes.clear();
     for (const BoundarySegment& s : masters.segments) {
-      Box box;
-      box.include(position(s.a));
-      box.include(position(s.b));
-      box.include(predicted(s.a, dt_next));
-      box.include(predicted(s.b, dt_next));
-      master.boxes.push_back(box.expanded(start_depth * norm(position(s.b) - position(s.a))));
+      master.boxes.push_back(swept_box(s, dt_next).expanded(start_depth * norm(position(s.b) - position(s.a))));
     }
     master.grid.build(master.boxes);
     master.built = true;
@@ -162,7 +157,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
 void ContactSolver::add_particle_candidates(double dt_next) {
   const Index count = particles_->size();
   if (count == 0) return;
-  auto swept_box = [&](ContactPoint point) {
+  auto reach_box = [&](ContactPoint point) {
     Box box;
     box.include(position(point));
     box.include(predicted(point, dt_next));
@@ -174,12 +169,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   segments.clear();
   for (const BodyBoundary& boundary : boundaries_) {
     for (const BoundarySegment& s : boundary.segments) {
-      Box box;
-      box.include(position(s.a));
-      box.include(position(s.b));
-      box.include(predicted(s.a, dt_next));
-      box.include(predicted(s.b, dt_next));
-      boxes_.push_back(box);
+      boxes_.push_back(swept_box(s, dt_next));
       segments.push_back(&s);
     }
   }
@@ -187,7 +177,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   for (Index i = 0; i < count; ++i) {
     const ContactPoint point = ContactPoint::particle(i);
     const double r = radius(point);
-    grid_.query(swept_box(point), [&](std::size_t k) {
+    grid_.query(reach_box(point), [&](std::size_t k) {
       const BoundarySegment& s = *segments[k];
       const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
       const double length = norm(position(s.b) - position(s.a));
@@ -205,7 +195,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   }
   // Particles against each other.
   boxes_.clear();
-  for (Index i = 0; i < count; ++i) boxes_.push_back(swept_box(ContactPoint::particle(i)));
+  for (Index i = 0; i < count; ++i) boxes_.push_back(reach_box(ContactPoint::particle(i)));
   grid_.build(boxes_);
   for (Index i = 0; i < count; ++i) {
     grid_.query(boxes_[static_cast<std::size_t>(i)], [&](std::size_t j) {

@@ -7,11 +7,8 @@ namespace krug::fracture {
 
 Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric) {
   const ZoneFields& zones = mesh.zones;
-  const NodeFields& nodes = mesh.nodes;
-  const ZoneCorners& n = zones.corners[z];
   const quad::Corners x = mesh.corner_positions(z);
-  const quad::Corners x0{Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
-                         Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
+  const quad::Corners x0 = initial_corners(mesh, z);
   const double initial_area = quad::area(x0);
   double f11, f12, f21, f22;
   deformation_gradient(x, quad::area_gradient(x0), initial_area, f11, f12, f21, f22);

@@ -90,6 +90,14 @@ void compute_forces(Mesh& mesh, const ZoneForceParams& params) {
   }
 }
 
+void compute_forces(Mesh& mesh, GeometryKind geometry, const ZoneForceParams& params) {
+  if (geometry == GeometryKind::axisymmetric) {
+    compute_forces<GeometryKind::axisymmetric>(mesh, params);
+  } else {
+    compute_forces<GeometryKind::planar>(mesh, params);
+  }
+}
+
 // A distorted quadrilateral (no two sides parallel), off the axis.
 const quad::Corners distorted{Vec2{0.20, 0.30}, Vec2{1.10, 0.25}, Vec2{1.00, 1.20}, Vec2{0.30, 1.00}};
 
@@ -126,11 +134,7 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
     mesh.zones.pressure[0] = pressure;
     set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
     const double volume = volume_of(positions(mesh), geometry);
-    if (geometry == GeometryKind::axisymmetric) {
-      compute_forces<GeometryKind::axisymmetric>(mesh, params);
-    } else {
-      compute_forces<GeometryKind::planar>(mesh, params);
-    }
+    compute_forces(mesh, geometry, params);
     const double work = dt * corner_power(mesh);
     move_nodes(mesh, dt);
     const double exact = pressure * (volume_of(positions(mesh), geometry) - volume);
@@ -161,11 +165,7 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
       mesh.zones.pressure[0] = pressure;
       set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
       const double volume = volume_of(positions(mesh), geometry);
-      if (geometry == GeometryKind::axisymmetric) {
-        compute_forces<GeometryKind::axisymmetric>(mesh, params);
-      } else {
-        compute_forces<GeometryKind::planar>(mesh, params);
-      }
+      compute_forces(mesh, geometry, params);
       const double work = dt * corner_power(mesh);
       move_nodes(mesh, -0.5 * dt);
       const double start = volume_of(positions(mesh), geometry);

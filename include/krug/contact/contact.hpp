@@ -172,6 +172,15 @@ class ContactSolver {
     return point.is_particle() ? particles_->velocity(point.index) : mesh_->nodes.velocity(point.index);
   }
   Vec2 predicted(ContactPoint point, double dt) const { return position(point) + dt * velocity(point); }
+  // The box a segment sweeps over the step: its ends at x^n and at the predicted positions.
+  Box swept_box(const BoundarySegment& s, double dt) const {
+    Box box;
+    box.include(position(s.a));
+    box.include(position(s.b));
+    box.include(predicted(s.a, dt));
+    box.include(predicted(s.b, dt));
+    return box;
+  }
   InverseMass inverse_mass(ContactPoint point) const {
     if (!point.exists()) return {};
     if (point.is_particle()) {

@@ -23,6 +23,14 @@ namespace krug::fracture {
 // the hoop stretch r/R with the zone's mean radii V/A in axisymmetric geometry, 1 in planar strain).
 Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric);
 
+// The corners of zone z where the run started (the reference of its stretches).
+inline quad::Corners initial_corners(const Mesh& mesh, Index z) {
+  const NodeFields& nodes = mesh.nodes;
+  const ZoneCorners& n = mesh.zones.corners[z];
+  return {Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
+          Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
+}
+
 // True when every principal stretch of zone z (as zone_stretches gives them) is certainly below
 // `limit` and none is negative, decided without a square root: with s = limit^2 (less a relative margin
 // of 1e-9, far above the rounding of either evaluation), lambda_max^2 < s exactly when s lies above
@@ -31,11 +39,8 @@ Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric);
 // (V/A) / (V0/A0) is compared multiplied out. A zone near the limit, inverted or degenerate gives false.
 inline bool stretches_below(const Mesh& mesh, Index z, bool axisymmetric, double limit) {
   const ZoneFields& zones = mesh.zones;
-  const NodeFields& nodes = mesh.nodes;
-  const ZoneCorners& n = zones.corners[z];
   const quad::Corners x = mesh.corner_positions(z);
-  const quad::Corners x0{Vec2{nodes.x0[n[0]], nodes.y0[n[0]]}, Vec2{nodes.x0[n[1]], nodes.y0[n[1]]},
-                         Vec2{nodes.x0[n[2]], nodes.y0[n[2]]}, Vec2{nodes.x0[n[3]], nodes.y0[n[3]]}};
+  const quad::Corners x0 = initial_corners(mesh, z);
   const double initial_area = quad::area(x0);
   const double bound = limit * (1.0 - 1e-9);
   if (!(initial_area > 0.0)) return false;
