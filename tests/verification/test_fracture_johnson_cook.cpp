@@ -94,6 +94,16 @@ struct Outcome {
   long converted = 0;
 };
 
+// Mass and energy close to round-off over a run with damage (and whatever converted), reported.
+void check_ledgers(const std::string& problem, const Outcome& out, const Simulation& sim) {
+  report(problem, "ledgers with damage", "round-off", out.worst_energy_drift,
+         "energy " + format_number("%.2e", out.worst_energy_drift) + ", mass " + format_number("%.2e", out.worst_mass_error) +
+             ", converted zones " + std::to_string(out.converted),
+         sim.mesh().zones.size(), 0.0);
+  CHECK(out.worst_mass_error < 1e-13);
+  CHECK(out.worst_energy_drift < 1e-12);
+}
+
 double triaxiality(const ZoneFields& z, Index k) {
   const double vm = std::sqrt(1.5 * (z.deviator_xx[k] * z.deviator_xx[k] + z.deviator_yy[k] * z.deviator_yy[k] +
                                      z.deviator_zz[k] * z.deviator_zz[k] + 2.0 * z.deviator_xy[k] * z.deviator_xy[k]));
@@ -197,12 +207,7 @@ TEST_CASE("Johnson-Cook damage: a rod in uniaxial tension fails at eps_f(1/3) (R
   CHECK(out.damage >= 1.0);
   // The rate factor barely moves over the run: the single-rate formula agrees to 0.1 %.
   CHECK(out.failure_strain == Approx(formula).epsilon(1e-3));
-  report("JC damage, RZ uniaxial tension", "ledgers with damage", "round-off", out.worst_energy_drift,
-         "energy " + format_number("%.2e", out.worst_energy_drift) + ", mass " + format_number("%.2e", out.worst_mass_error) +
-             ", converted zones " + std::to_string(out.converted),
-         sim.mesh().zones.size(), 0.0);
-  CHECK(out.worst_mass_error < 1e-13);
-  CHECK(out.worst_energy_drift < 1e-12);
+  check_ledgers("JC damage, RZ uniaxial tension", out, sim);
 }
 
 TEST_CASE("Johnson-Cook damage: a plane-strain strip fails at eps_f of its measured triaxiality",
@@ -222,12 +227,7 @@ TEST_CASE("Johnson-Cook damage: a plane-strain strip fails at eps_f of its measu
   // Plane strain, not uniaxial: the triaxiality lies well above 1/3, near 1/sqrt(3).
   CHECK(measured.mean_eta > 0.5);
   CHECK(measured.mean_eta < 0.6);
-  report("JC damage, planar plane-strain tension", "ledgers with damage", "round-off",
-         out.worst_energy_drift, "energy " + format_number("%.2e", out.worst_energy_drift) + ", mass " + format_number("%.2e", out.worst_mass_error) +
-             ", converted zones " + std::to_string(out.converted),
-         sim.mesh().zones.size(), 0.0);
-  CHECK(out.worst_mass_error < 1e-13);
-  CHECK(out.worst_energy_drift < 1e-12);
+  check_ledgers("JC damage, planar plane-strain tension", out, sim);
 }
 
 TEST_CASE("Johnson-Cook damage: damaged zones loosen and convert, ledgers close (planar and RZ)",
