@@ -3,8 +3,11 @@
 namespace krug::boundary {
 
 Boundary::Boundary(std::vector<NodeConstraint> constraints, std::vector<DrivenComponent> driven,
-                   std::vector<FaceLoad> loads)
-    : constraints_(std::move(constraints)), driven_(std::move(driven)), loads_(std::move(loads)) {}
+                   std::vector<FaceLoad> loads, std::vector<HeldSide> held_sides)
+    : constraints_(std::move(constraints)),
+      driven_(std::move(driven)),
+      loads_(std::move(loads)),
+      held_sides_(std::move(held_sides)) {}
 
 void Boundary::initialise(NodeFields& nodes, GeometryKind geometry) {
   const auto size = static_cast<std::size_t>(nodes.size());

@@ -81,6 +81,7 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     JsonObject* h = &hourglass;
     c.hourglass.viscous = h->number("viscous", c.hourglass.viscous, Range::between(0.0, 1.0));
     c.hourglass.stiffness = h->number("stiffness", c.hourglass.stiffness, Range::between(0.0, 1.0));
+    c.hourglass.plastic_limit = h->number("plastic_limit", c.hourglass.plastic_limit, Range::between(0.0, 10.0));
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));
     h->finish();

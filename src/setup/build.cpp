@@ -149,12 +149,13 @@ void set_initial_fields(const InitialState& initial, const Body& body, GeometryK
 
 // Applies a body's side conditions through the boundary package's registry (boundary::condition_kinds()):
 // held components go to `constraints` (a node on two sides takes both), with the condition that holds
-// each in `held_by`; driven components and loads to `target`. Functions of time are checked for finite
+// each in `held_by` and the side in `held_side`; driven components and loads to `target`. Functions of time are checked for finite
 // values over the run.
 void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::Patch& patch, const Body& body,
                     const std::vector<std::pair<std::string, std::string>>& sides, GeometryKind geometry, Mesh& mesh,
                     double end_time, std::map<Index, NodeConstraint>& constraints,
-                    std::map<Index, std::array<std::string, 2>>& held_by, boundary::Target& target,
+                    std::map<Index, std::array<std::string, 2>>& held_by,
+                    std::map<Index, std::array<std::string, 2>>& held_side, boundary::Target& target,
                     const std::string& where) {
   std::vector<BoundarySegment> body_segments;
   std::map<std::string, std::string> kinematic_sides;  // side -> the kind that holds it
@@ -205,6 +206,8 @@ void apply_boundary(const std::vector<SideBoundary>& boundary, const generate::P
       c.fix_y = c.fix_y || fy;
       if (fx) held_by[n][0] = label;
       if (fy) held_by[n][1] = label;
+      if (fx) held_side[n][0] = b.side;
+      if (fy) held_side[n][1] = b.side;
     };
     const boundary::Condition condition{b.condition, b.velocity, b.velocity_of_time, b.pressure, b.traction};
     kind.apply(condition, side, geometry, mesh.nodes, target);
@@ -297,6 +300,7 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
   setup.fracture = scene.fracture;
   std::map<Index, NodeConstraint> constraints;
   std::map<Index, std::array<std::string, 2>> held_by;  // the boundary condition that holds each component
+  std::map<Index, std::array<std::string, 2>> held_side;  // the side whose condition holds it (the last applied)
   boundary::Target target;  // driven components and loads of every body
   std::vector<std::string> where;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -350,7 +354,21 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     }
     set_initial_fields(description.initial, body, scene.geometry, setup.mesh, where.back());
     apply_boundary(description.boundary, patch, body, side_names(description.mesh, scene.geometry), scene.geometry,
-                   setup.mesh, scene.controls.end_time, constraints, held_by, target, where.back());
+                   setup.mesh, scene.controls.end_time, constraints, held_by, held_side, target, where.back());
+    // The body's held components by side, the sides in the scenario's order.
+    for (const SideBoundary& b : description.boundary) {
+      boundary::HeldSide group{static_cast<Index>(i), b.side, {}};
+      if (std::any_of(setup.held_sides.begin(), setup.held_sides.end(), [&](const boundary::HeldSide& h) {
+            return h.body == group.body && h.side == group.side;
+          })) {
+        continue;  // a side named twice
+      }
+      for (auto it = held_side.lower_bound(body.node_begin); it != held_side.end() && it->first < body.node_end; ++it) {
+        const bool fx = it->second[0] == b.side, fy = it->second[1] == b.side;
+        if (fx || fy) group.components.push_back({it->first, fx, fy});
+      }
+      if (!group.components.empty()) setup.held_sides.push_back(std::move(group));
+    }
     setup.bodies.push_back(body);
   }
   // Bodies may touch but not overlap: a node or a zone centre of one inside a zone of another is an input error.

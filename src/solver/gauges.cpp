@@ -1,6 +1,7 @@
 #include "krug/solver/gauges.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -206,13 +207,30 @@ GaugeSampler::GaugeSampler(const GaugeSettings& settings, const Simulation& simu
     for (std::size_t w = 0; w < contact.walls.size(); ++w) {
       add({Channel::Kind::wall, static_cast<Index>(w)}, fmt::format("wall{}", w));
     }
+    // Per body: one channel per side that holds components (held_<body>_<side>), then one for the
+    // held components no side of the scenario holds (held_<body>: the axis in RZ, or a condition
+    // given in code).
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      std::vector<NodeConstraint> held;
-      for (const NodeConstraint& c : simulation.constraints()) {
-        if (c.node >= bodies[b].node_begin && c.node < bodies[b].node_end) held.push_back(c);
+      std::map<Index, std::array<bool, 2>> by_side;  // the body's components some side holds
+      for (const boundary::HeldSide& side : simulation.held_sides()) {
+        if (side.body != static_cast<Index>(b)) continue;
+        for (const NodeConstraint& c : side.components) {
+          by_side[c.node][0] = by_side[c.node][0] || c.fix_x;
+          by_side[c.node][1] = by_side[c.node][1] || c.fix_y;
+        }
+        held_.push_back(side.components);
+        add({Channel::Kind::held, static_cast<Index>(b)}, "held_" + bodies[b].name + "_" + side.side);
       }
-      if (held.empty()) continue;
-      held_.push_back(std::move(held));
+      std::vector<NodeConstraint> rest;
+      for (const NodeConstraint& c : simulation.constraints()) {
+        if (c.node < bodies[b].node_begin || c.node >= bodies[b].node_end) continue;
+        const auto found = by_side.find(c.node);
+        const bool fx = c.fix_x && (found == by_side.end() || !found->second[0]);
+        const bool fy = c.fix_y && (found == by_side.end() || !found->second[1]);
+        if (fx || fy) rest.push_back({c.node, fx, fy});
+      }
+      if (rest.empty()) continue;
+      held_.push_back(std::move(rest));
       add({Channel::Kind::held, static_cast<Index>(b)}, "held_" + bodies[b].name);
     }
     force_.assign(2 * channels_.size(), 0.0);

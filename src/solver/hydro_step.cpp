@@ -14,6 +14,7 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
   ZoneForceParams params;
   params.shock_slope = material.shock_slope();
   params.shear_modulus = material.shear_modulus();
+  params.flow_stress = material.initial_flow_stress();
   params.viscosity = controls.viscosity;
   params.hourglass = controls.hourglass;
   params.axisymmetric_form = controls.axisymmetric_form;

@@ -18,7 +18,8 @@ Simulation::Simulation(SimulationSetup setup)
     : geometry_(setup.geometry),
       materials_(std::move(setup.materials)),
       bodies_(std::move(setup.bodies)),
-      boundary_(std::move(setup.constraints), std::move(setup.driven), std::move(setup.loads)),
+      boundary_(std::move(setup.constraints), std::move(setup.driven), std::move(setup.loads),
+                std::move(setup.held_sides)),
       controls_(setup.controls) {
   state_.mesh = std::move(setup.mesh);
   state_.fracture_counts.assign(bodies_.size(), FractureCounts{});

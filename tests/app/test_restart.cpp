@@ -221,7 +221,8 @@ TEST_CASE("gauges.csv survives a checkpoint and a restart byte for byte", "[app]
   CHECK(expected.rfind("time,cycle,mid_x,mid_y,mid_vx,mid_vy,mid_pressure,", 0) == 0);
   CHECK(std::count(expected.begin(), expected.end(), '\n') >= 42);
   CHECK(expected.find("pair_flyer_target_Fx,pair_flyer_target_Fy,pair_flyer_target_Ix") != std::string::npos);
-  CHECK(expected.find("held_target_Fx") != std::string::npos);
+  CHECK(expected.find("held_target_y_min_Fx") != std::string::npos);
+  CHECK(expected.find("held_target_y_max_Fx") != std::string::npos);
 
   interrupted_run(scenario, stopped, 1.2e-6);
   REQUIRE(fs::exists(stopped / "checkpoint.bin"));

@@ -1,14 +1,23 @@
-// The copper Taylor bar of examples/verification/taylor_bar.json (L0 32.4 mm, R0 3.2 mm, 227 m/s onto a
-// rigid wall) with its material replaced by the library's "ofhc-copper" (Mie–Grüneisen, Johnson–Cook
-// strength of annealed OFHC copper, Johnson & Cook 1983). The example's own copper is an idealised
-// work-hardened copper (Y0 400 MPa, linear hardening) whose converged final length, 21.42 mm, is a
-// numerical reference, not a test of OFHC copper; the library's copper is not meant to match it.
-// No published final length of an OFHC copper bar of this geometry and speed is used here: the run
-// checks the ledgers and reports the length (docs/materials.md gives the measured figure).
-// Under the `convergence` label: about 12 s of one core.
+// The library's OFHC copper (Johnson-Cook strength of Johnson & Cook 1983, Steinberg's EOS) in the
+// Taylor test Johnson & Cook (1983) used to check their constants: annealed OFHC copper, L0 25.4 mm,
+// D0 7.62 mm, onto a rigid anvil (examples/verification/taylor_ofhc_copper.json, 58 x 14 zones).
+// Measured final lengths, 0.770, 0.736 and 0.638 L0 at 130, 146 and 190 m/s (19.6, 18.7 and 16.2 mm):
+// Johnson & Cook (1983), the 190 m/s test also in Zerilli & Armstrong (1987), J. Appl. Phys. 61,
+// 1816; read from a digitised compilation of those papers' figures, not from the printed pages.
+// No uncertainty is published with the lengths. The band used here, 10 % of the measured length, is
+// this test's: by Taylor's (1948) estimate L/L0 = exp(-rho U^2 / (2 Y)), a length error dL/L is
+// ln(L0/L) dY/Y, 0.45 dY/Y at 190 m/s, so 10 % on the length is 22 % on the mean flow stress, the
+// order of the extrapolation a 1983 fit (torsion and Hopkinson-bar data) makes to the 1e4-1e5 /s and
+// strains above 1 at the impact face. Measured: 20.64, 19.78 and 17.33 mm (+5.3, +5.8 and +7.0 %;
+// 116 x 28 zones at 190 m/s: 17.32 mm): longer than the tests, the law's copper too strong by about
+// 15 % of flow stress on this estimate (docs/materials.md).
+// Under the `convergence` label: about 15 s of one core.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "test_solid_measures.hpp"
 
@@ -16,36 +25,33 @@ using namespace krug;
 using namespace krug::verification;
 using namespace krug::verification::solid;
 
-TEST_CASE("Taylor bar at 227 m/s with the library's OFHC copper: ledgers and the final length",
+TEST_CASE("Taylor bar of the library's OFHC copper against Johnson & Cook's measured lengths",
           "[taylor_library][strength][axisymmetric]") {
-  std::string text = read_text(example_path("taylor_bar.json"));
-  const std::string from = "\"copper\": {";
-  const auto begin = text.find(from);
-  REQUIRE(begin != std::string::npos);
-  const auto end = text.find("}\n    }", begin);  // the closing of the strength block, then of the material
-  REQUIRE(end != std::string::npos);
-  text.replace(begin, end + 7 - begin, "\"copper\": \"ofhc-copper\"");
-  const io::Scenario scenario = io::parse_scenario(text, "taylor_bar.json with ofhc-copper");
-  Run run(scenario.setup);
-  const Body& bar = run.simulation.bodies().front();
-  const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);
-  advance(run);
-  INFO(run.failure);
-  REQUIRE(run.completed());
-  const TaylorMeasures m = taylor_measures(run.simulation.mesh(), bar, face);
-  const long zones = bar.zone_end - bar.zone_begin;
-  WARN("ofhc-copper Taylor bar: length " << 1e3 * m.length << " mm, impact-face radius " << 1e3 * m.face_radius
-                                         << " mm at 80 us; " << run.simulation.cycle() << " cycles, " << run.seconds
-                                         << " s");
-  report("Taylor bar, library ofhc-copper", "length at 80 us (mm)", "none published for this geometry", 1e3 * m.length,
-         "-", zones, run.seconds);
-  const Ledger& ledger = run.simulation.ledger();
-  CHECK(ledger.relative_mass_error() == 0.0);
-  CHECK(ledger.relative_energy_drift() < 1e-12);
-  // Only what holds whatever the law: shorter than it started, and not flattened to a quarter (Taylor's
-  // (1948) rigid-plastic estimate L/L0 = exp(-rho U^2 / (2 Y)) gives 0.56 L0 for Y = 400 MPa, the flow
-  // stress the law reaches at a plastic strain near 0.5 and 1e4 /s). Measured: 19.10 mm, face radius 7.14 mm
-  // (68 x 12 zones).
-  CHECK(m.length < 32.4e-3);
-  CHECK(m.length > 0.25 * 32.4e-3);
+  struct Test {
+    double speed;          // m/s
+    double length_ratio;   // measured L / L0
+  };
+  const double initial_length = 25.4e-3;
+  for (const Test test : {Test{130.0, 0.770}, Test{146.0, 0.736}, Test{190.0, 0.638}}) {
+    nlohmann::json document = nlohmann::json::parse(read_text(example_path("taylor_ofhc_copper.json")));
+    document["bodies"][0]["initial"]["velocity"] = {-test.speed, 0.0};
+    const io::Scenario scenario = io::parse_scenario(document.dump(), "taylor_ofhc_copper.json");
+    Run run(scenario.setup);
+    const Body& bar = run.simulation.bodies().front();
+    const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);
+    advance(run);
+    INFO(run.failure);
+    REQUIRE(run.completed());
+    const TaylorMeasures m = taylor_measures(run.simulation.mesh(), bar, face);
+    const double measured = test.length_ratio * initial_length;
+    INFO(test.speed << " m/s: length " << 1e3 * m.length << " mm against the measured " << 1e3 * measured
+                    << " mm; impact-face radius " << 1e3 * m.face_radius << " mm");
+    CHECK(std::abs(m.length - measured) <= 0.10 * measured);
+    const Ledger& ledger = run.simulation.ledger();
+    CHECK(ledger.relative_mass_error() == 0.0);
+    CHECK(ledger.relative_energy_drift() < 1e-12);
+    report("Taylor bar, library ofhc-copper at " + format_number("%.0f m/s", test.speed), "final length (mm)",
+           format_number("%.1f (JC83, measured)", 1e3 * measured), 1e3 * m.length,
+           format_number("%+.1f %%", 100.0 * (m.length / measured - 1.0)), bar.zone_end - bar.zone_begin, run.seconds);
+  }
 }

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "krug/core/geometry_kind.hpp"
@@ -54,6 +55,14 @@ struct FaceLoad {
   TimeFunction pressure, traction;
 };
 
+// The held components one side's condition holds (a component that two sides hold belongs to the one
+// applied last), named for reports: the reaction gauges (gauges.csv, held_<body>_<side>).
+struct HeldSide {
+  Index body = 0;
+  std::string side;
+  std::vector<NodeConstraint> components;
+};
+
 // Where the boundary books its work and axial impulse (the ledger's lines, docs/theory.md §3).
 struct Books {
   double& work;
@@ -76,7 +85,8 @@ inline std::array<Vec2, 2> segment_load(Vec2 a, Vec2 b, double pressure, double 
 class Boundary {
  public:
   Boundary() = default;
-  Boundary(std::vector<NodeConstraint> constraints, std::vector<DrivenComponent> driven, std::vector<FaceLoad> loads);
+  Boundary(std::vector<NodeConstraint> constraints, std::vector<DrivenComponent> driven, std::vector<FaceLoad> loads,
+           std::vector<HeldSide> held_sides = {});
 
   // At t^0, with the nodal inverse masses set: in axisymmetric geometry every node on the axis holds
   // u_r = 0 (its velocity set so); every held component's inverse mass becomes 0.
@@ -95,6 +105,8 @@ class Boundary {
 
   bool has_loads() const { return !loads_.empty(); }
   const std::vector<NodeConstraint>& constraints() const { return constraints_; }
+  // The held components by the side that holds them (not the axis in RZ, added by initialise).
+  const std::vector<HeldSide>& held_sides() const { return held_sides_; }
   const std::vector<std::uint8_t>& held_x() const { return held_x_; }  // per node: 1 where u_x is held
   const std::vector<std::uint8_t>& held_y() const { return held_y_; }
 
@@ -102,6 +114,7 @@ class Boundary {
   std::vector<NodeConstraint> constraints_;
   std::vector<DrivenComponent> driven_;
   std::vector<FaceLoad> loads_;
+  std::vector<HeldSide> held_sides_;
   std::vector<std::uint8_t> held_x_, held_y_;
   std::vector<std::uint8_t> driven_x_, driven_y_;  // per node: the held component follows a function of time
   struct NodeLoad {

@@ -35,6 +35,7 @@ namespace krug {
 struct ZoneForceParams {
   double shock_slope = 0.5;            // of the body's EOS
   double shear_modulus = 0.0;          // Pa, for stiffness hourglass
+  double flow_stress = 0.0;            // Pa, initial flow stress, for the stiffness state's plastic bound
   ViscosityParams viscosity;
   HourglassParams hourglass;
   AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
@@ -173,6 +174,7 @@ struct ForceSettings {
   bool hourglass_on = false;
   bool hourglass_stiff = false;
   double stiffness_modulus = 0.0;  // k_s mu
+  double plastic_limit = 0.0;      // bound of |Q| / |b| (Pa); 0: none
   double cq_s = 0.0;               // c_q x the EOS shock slope
   double cl = 0.0;                 // c_l
   double subzonal = 0.0;           // subzonal pressure coefficient; 0: off
@@ -449,8 +451,20 @@ template <GeometryKind G>
       const double area = batch.area[i];
       increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
       increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
-      zones.hourglass_x[z] += increment_x[i];
-      zones.hourglass_y[z] += increment_y[i];
+      double qx = zones.hourglass_x[z] + increment_x[i];
+      double qy = zones.hourglass_y[z] + increment_y[i];
+      if (settings.plastic_limit > 0.0) {
+        const double bound = settings.plastic_limit * std::sqrt(batch.bb[i]);
+        const double size = std::sqrt(qx * qx + qy * qy);
+        if (size > bound) {
+          qx *= bound / size;
+          qy *= bound / size;
+          increment_x[i] = qx - zones.hourglass_x[z];
+          increment_y[i] = qy - zones.hourglass_y[z];
+        }
+      }
+      zones.hourglass_x[z] = qx;
+      zones.hourglass_y[z] = qy;
     }
   }
   for (int i = 0; i < count; ++i) {
@@ -533,6 +547,7 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
   // k_s mu: without shear stiffness (a gas, or k_s = 0) the stiffness state never changes.
   settings.stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
   settings.hourglass_stiff = settings.stiffness_modulus != 0.0;
+  if (std::isfinite(params.flow_stress)) settings.plastic_limit = params.hourglass.plastic_limit * params.flow_stress;
   settings.cq_s = params.viscosity.quadratic * params.shock_slope;
   settings.cl = params.viscosity.linear;
   // Subzonal pressures: bodies without strength, compatible forms only.

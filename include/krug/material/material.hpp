@@ -22,6 +22,11 @@ struct Material {
   double shear_modulus() const {
     return std::visit([](const auto& s) { return s.shear_modulus; }, strength);
   }
+  // The flow stress at zero plastic strain, reference rate and room temperature (Pa); 0 without
+  // strength, infinite for an elastic body.
+  double initial_flow_stress() const {
+    return std::visit([](const auto& s) { return s.flow_stress(0.0); }, strength);
+  }
   double shock_slope() const {
     return std::visit([](const auto& m) { return m.shock_slope(); }, eos);
   }

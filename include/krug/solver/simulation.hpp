@@ -29,6 +29,7 @@ struct SimulationSetup {
   std::vector<NodeConstraint> constraints;               // held components (the axis in RZ is added by the Simulation)
   std::vector<boundary::DrivenComponent> driven;         // held components that follow a function of time
   std::vector<boundary::FaceLoad> loads;                 // pressure and traction on faces
+  std::vector<boundary::HeldSide> held_sides;            // the constraints by the side that holds them (reports)
   contact::ContactSetup contact;
   std::vector<fracture::FailureLaw> fracture;  // per material; empty or not enabled (fracture::enabled): no fracture
   Controls controls;
@@ -99,6 +100,7 @@ class Simulation {
   // For gauges: the held velocity components, the contact solver (its last solve's reactions) and the
   // step dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 of the last cycle, over which F^n and R acted (s).
   const std::vector<NodeConstraint>& constraints() const { return boundary_.constraints(); }
+  const std::vector<boundary::HeldSide>& held_sides() const { return boundary_.held_sides(); }
   const contact::ContactSolver& contact() const { return contact_; }
   double last_step_mid() const { return last_step_mid_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
