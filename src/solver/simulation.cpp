@@ -296,4 +296,38 @@ void Simulation::fail(const std::string& what, Index zone) const {
                          body_name, local, state_.time);
 }
 
+void Simulation::evaluate_fracture() {
+  // The state just computed is at t^{n+1}; the plastic strain grew over dt^{n+1/2}.
+  evaluate_failure_laws(state_.mesh, bodies_, materials_, failure_laws_, geometry_, state_.time + state_.time_step_next,
+                        state_.time_step_next, state_.fracture_counts);
+}
+
+void Simulation::convert_fractured_zones() {
+  const std::vector<Conversion> chosen = choose_conversions(state_.mesh, bodies_, materials_, failure_laws_,
+                                                            controls_.fracture, boundary_.held_x(), boundary_.held_y());
+  if (chosen.empty()) return;
+  convert_zones(chosen, state_.mesh, state_.particles, controls_.fracture.particles_per_zone,
+                state_.time + state_.time_step_next, state_.zones_per_node, boundary_.held_x(), boundary_.held_y(),
+                {state_.ledger, state_.body_converted_energy, state_.fracture_counts});
+  topology_changed_ = true;
+  // The step limit now comes from the zones that remain.
+  const ZoneFields& zones = state_.mesh.zones;
+  state_.stable_time_step = std::numeric_limits<double>::infinity();
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (zones.active[z] && zones.stable_time_step[z] < state_.stable_time_step) {
+      state_.stable_time_step = zones.stable_time_step[z];
+      state_.controlling_zone = z;
+    }
+  }
+  measure_ledger(state_.mesh, state_.particles, state_.ledger);
+}
+
+std::vector<Fragment> Simulation::fragments(const Body& body) const {
+  std::vector<Fragment> pieces = connected_pieces(state_.mesh, body.zone_begin, body.zone_end);
+  for (Fragment& f : pieces) f.mass *= whole_body_factor();
+  std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
+  return pieces;
+}
+
+
 }  // namespace krug

@@ -14,6 +14,7 @@
 #include "krug/mesh/pieces.hpp"
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
+#include "krug/solver/fracture_step.hpp"
 #include "krug/solver/ledger.hpp"
 #include "krug/solver/time_step.hpp"
 
@@ -35,15 +36,6 @@ struct SimulationSetup {
   Controls controls;
 };
 
-// Fracture counters of one body.
-struct FractureCounts {
-  long damaged = 0;               // zones damaged so far
-  long converted = 0;             // zones converted to particles
-  long interior_conversions = 0;  // of which converted away from the surface (f_i, inverted corner, dt floor)
-  double converted_mass = 0.0;    // per radian or per m
-  long eroded = 0;                // intact zones removed by erosion on distortion
-  double eroded_mass = 0.0;       // per radian or per m
-};
 
 // Everything that changes during a run: with the setup it came from, it restarts a run exactly.
 struct SimulationState {
@@ -149,9 +141,6 @@ class Simulation {
   void initialise();
   void share_edge_limiters();  // the edge-viscosity limiter computed once per edge (from the connectivity)
   boundary::Books boundary_books() { return {state_.ledger.energy.boundary, state_.ledger.axial_boundary_impulse}; }
-  enum class ConversionRule { surface, interior, erosion };
-  void convert_zone(Index zone, ConversionRule rule);
-  bool face_is_free(Index zone, int edge) const;
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
   GeometryKind geometry_;
