@@ -148,7 +148,7 @@ SolveTiming time_solves(const PressedBlocks& blocks, contact::ContactControls co
     mesh.nodes.u = blocks.mesh.nodes.u;
     mesh.nodes.v = blocks.mesh.nodes.v;
     contact::ContactStatistics stats;
-    const Timing t = time_it([&] { stats = solver.solve(mesh, particles, blocks.dt, blocks.dt); });
+    const Timing t = time_it([&] { stats = solver.solve(contact::nodes_view(mesh.nodes), contact::particles_view(particles), blocks.dt, blocks.dt); });
     benchmark::DoNotOptimize(mesh.nodes.u.data());
     result.total += t;
     result.active += stats.active;

@@ -274,7 +274,7 @@ void time_solve(benchmark::State& state, krug::contact::ContactSolver& solver, k
     mesh.nodes.u = node_u;
     mesh.nodes.v = node_v;
     krug::contact::ContactStatistics stats;
-    const Timing t = time_it([&] { stats = solver.solve(mesh, particles, kernel_dt, kernel_dt); });
+    const Timing t = time_it([&] { stats = solver.solve(krug::contact::nodes_view(mesh.nodes), krug::contact::particles_view(particles), kernel_dt, kernel_dt); });
     benchmark::DoNotOptimize(particles.u.data());
     benchmark::ClobberMemory();
     state.SetIterationTime(1e-9 * t.cpu_ns);

@@ -82,11 +82,11 @@ void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, doub
   const InverseMass w = inverse_mass(point);
   const Index i = point.index;
   if (point.is_particle()) {
-    particles_->u[i] += dt_mid * force * direction.x * w.x;
-    particles_->v[i] += dt_mid * force * direction.y * w.y;
+    particles_.u[i] += dt_mid * force * direction.x * w.x;
+    particles_.v[i] += dt_mid * force * direction.y * w.y;
   } else {
-    mesh_->nodes.u[i] += dt_mid * force * direction.x * w.x;
-    mesh_->nodes.v[i] += dt_mid * force * direction.y * w.y;
+    nodes_.u[i] += dt_mid * force * direction.x * w.x;
+    nodes_.v[i] += dt_mid * force * direction.y * w.y;
   }
   touch(point, force * direction);
 }
@@ -155,7 +155,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
 }
 
 void ContactSolver::add_particle_candidates(double dt_next) {
-  const Index count = particles_->size();
+  const Index count = particles_.size;
   if (count == 0) return;
   auto reach_box = [&](ContactPoint point) {
     Box box;
@@ -215,7 +215,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
     const double reach = dt_next * norm(velocity(point)) + (1.0 + particle_search_margin) * radius(point);
     for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
       const RigidWall& wall = setup_.walls[w];
-      const Index origin = particles_->body[i];
+      const Index origin = particles_.body[i];
       if (!wall.bodies.empty() && std::find(wall.bodies.begin(), wall.bodies.end(), origin) == wall.bodies.end()) continue;
       const double start_gap = dot(position(point) - wall.point, wall.normal) - radius(point);
       if (start_gap + radius(point) - reach > 0.0) continue;
@@ -396,9 +396,9 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   return g.valid ? gap_after - target : std::numeric_limits<double>::infinity();
 }
 
-ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next) {
-  mesh_ = &mesh;
-  particles_ = &particles;
+ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next) {
+  nodes_ = nodes;
+  particles_ = particles;
   for (const ContactPoint p : touched_) {
     if (p.is_particle()) continue;
     reaction_x_[p.index] = reaction_y_[p.index] = 0.0;
@@ -406,10 +406,10 @@ ContactStatistics ContactSolver::solve(Mesh& mesh, Particles& particles, double 
     touched_flag_[p.index] = 0;
   }
   touched_.clear();
-  particle_reaction_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
-  particle_reaction_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
-  particle_overlap_x_.assign(static_cast<std::size_t>(particles.size()), 0.0);
-  particle_overlap_y_.assign(static_cast<std::size_t>(particles.size()), 0.0);
+  particle_reaction_x_.assign(static_cast<std::size_t>(particles.size), 0.0);
+  particle_reaction_y_.assign(static_cast<std::size_t>(particles.size), 0.0);
+  particle_overlap_x_.assign(static_cast<std::size_t>(particles.size), 0.0);
+  particle_overlap_y_.assign(static_cast<std::size_t>(particles.size), 0.0);
   ContactStatistics stats;
   find_candidates(dt_next);
   stats.candidates = static_cast<long>(candidates_.size());

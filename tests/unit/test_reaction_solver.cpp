@@ -106,7 +106,7 @@ TEST_CASE("node against a fixed segment: the reaction closes the predicted gap",
   add_body(scene, identity, 1.0, {0.0, 0.0}, true);   // nodes 0-3, held
   add_body(scene, diamond, 1.0, {0.0, -10.0});        // nodes 4-7, mass 1
   ContactSolver solver = pair_solver(scene);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   // Node 4 at height 1.1 moves dt_next * 10 = 0.2 down: g* = 0.1 - 0.2 = -0.1. The segment is held, so
   // w = n.W_c n = 1 and R = 0.1 / (0.01 * 0.02 * 1) = 500 N; du = dt_mid R / m = 5: v = -10 + 5 = -5,
   // and the predicted height 1.1 - 0.02 * 5 = 1.0 lies on the face. The diamond's other corners start
@@ -131,7 +131,7 @@ TEST_CASE("node against a free segment: hand reaction and momentum conserved", "
   add_body(scene, diamond, 2.0, {0.0, -10.0});  // nodes 4-7, mass 2 each
   const Vec2 before = momentum(scene);          // 4 x 2 x (-10) = (0, -80)
   ContactSolver solver = pair_solver(scene);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   // g* = -0.1 (as above); w = 1/2 + (1 - 0.5)^2 * 1 + 0.5^2 * 1 = 1; R = 0.1 / (2e-4 * 1) = 500.
   // Node 4: du = 0.01 * 500 / 2 = 2.5 -> v = -7.5. Ends a, b: du = -0.01 * 0.5 * 500 / 1 = -2.5.
   // Predicted: node 1.1 - 0.02 * 7.5 = 0.95, segment 1 - 0.02 * 2.5 = 0.95: closed, the segment still
@@ -158,7 +158,7 @@ TEST_CASE("summation method: a two-way pair gets half the closing reaction", "[k
   add_body(scene, diamond, 2.0, {0.0, -10.0});
   const Vec2 before = momentum(scene);
   ContactSolver solver = pair_solver(scene, ReactionMethod::summation);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.sweeps == 1);
   CHECK(stats.total_normal == Approx(250.0).margin(1e-9));
   CHECK(scene.mesh.nodes.v[4] == Approx(-8.75).margin(1e-12));
@@ -182,7 +182,7 @@ TEST_CASE("two nodes on one free segment: coupled reactions converge to the hand
   add_body(scene, [](Vec2 p) { return Vec2{0.3 + 0.4 * p.x, 1.1 + 0.4 * p.y}; }, 1.0, {0.0, -6.0});
   const Vec2 before = momentum(scene);  // 4 x 4 - 4 x 6 = -8
   ContactSolver solver = pair_solver(scene);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   const double tolerance = ContactControls{}.gap_tolerance;  // relative to the segment length 1
   INFO("sweeps " << stats.sweeps);
   CHECK(stats.active == 2);
@@ -229,7 +229,7 @@ TEST_CASE("oblique approach with friction: no pull, gaps closed, momentum conser
   };
   const Vec2 normal_before = top_normal();
   ContactSolver solver = pair_solver(scene, method, 0.3);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   INFO("sweeps " << stats.sweeps << ", active " << stats.active);
   CHECK(stats.active == 2);
   CHECK(stats.total_normal > 0.0);
@@ -266,7 +266,7 @@ TEST_CASE("a pair moving apart gets no reaction", "[kernels][reaction_solver]") 
   add_body(scene, identity, 1.0, square_velocity);
   add_body(scene, diamond, 2.0, diamond_velocity);
   ContactSolver solver = pair_solver(scene);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.active == 0);
   CHECK(stats.total_normal == 0.0);
   CHECK(solver.touched_points().empty());
@@ -289,7 +289,7 @@ TEST_CASE("particle against a free segment: hand reaction and momentum", "[kerne
   ContactSetup setup;
   setup.particles = true;
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.active == 1);
   CHECK(stats.total_normal == Approx(1500.0).margin(1e-9));
   CHECK(scene.particles.v[0] == Approx(-12.5).margin(1e-12));
@@ -320,7 +320,7 @@ TEST_CASE("particle off the segment's middle and at a corner: invariants", "[ker
   ContactSetup setup;
   setup.particles = true;
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   INFO("sweeps " << stats.sweeps << (held ? ", held square" : ", free square"));
   CHECK(stats.active >= 1);
   CHECK(stats.total_normal > 0.0);
@@ -359,7 +359,7 @@ TEST_CASE("particle against particle, head on: hand reaction and momentum", "[ke
   ContactSetup setup;
   setup.particles = true;
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.active == 1);
   CHECK(stats.total_normal == Approx(375.0).margin(1e-9));
   CHECK(scene.particles.u[0] == Approx(1.25).margin(1e-12));
@@ -375,7 +375,7 @@ TEST_CASE("particle against particle, head on: hand reaction and momentum", "[ke
   apart.particles.add({0.0, 0.0}, {-5.0, 0.0}, 1.0, 0.1, 0, 0.0);
   apart.particles.add({0.3, 0.0}, {5.0, 0.0}, 3.0, 0.1, 0, 0.0);
   ContactSolver apart_solver(setup, apart.mesh, apart.zone_ranges);
-  const ContactStatistics apart_stats = apart_solver.solve(apart.mesh, apart.particles, dt_mid, dt_next);
+  const ContactStatistics apart_stats = apart_solver.solve(nodes_view(apart.mesh.nodes), particles_view(apart.particles), dt_mid, dt_next);
   CHECK(apart_stats.total_normal == 0.0);
   CHECK(apart.particles.u[0] == -5.0);
   CHECK(apart.particles.u[1] == 5.0);
@@ -391,7 +391,7 @@ TEST_CASE("rigid wall: nodes stopped on it, the impulse equals the momentum chan
   ContactSetup setup;
   setup.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.0, {}});
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.candidates == 2);
   CHECK(stats.active == 2);
   CHECK(stats.total_normal == Approx(3000.0).margin(1e-9));
@@ -417,7 +417,7 @@ TEST_CASE("rigid wall with Coulomb friction: slip limited to f R, or stick", "[k
   setup.particles = true;
   setup.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, friction, {}});
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, 0.01, 0.01);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), 0.01, 0.01);
   CHECK(stats.total_normal == Approx(500.0).margin(1e-9));
   CHECK(scene.particles.v[0] == Approx(-5.0).margin(1e-12));
   CHECK(scene.particles.u[0] == Approx(expected_u).margin(1e-12));
@@ -437,7 +437,7 @@ TEST_CASE("pre-existing overlap: removed by the overlap fraction, at most overla
   setup.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.0, {}});
   setup.controls.overlap_speed = overlap_speed;
   ContactSolver solver(setup, scene.mesh, scene.zone_ranges);
-  const ContactStatistics stats = solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  const ContactStatistics stats = solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(stats.total_normal == Approx(2.0 * expected_r).margin(1e-9));
   for (Index n : {0, 1}) {
     CHECK(scene.mesh.nodes.v[n] == Approx(dt_mid * expected_r).margin(1e-12));
@@ -462,7 +462,7 @@ TEST_CASE("node landing on a face near a convex corner gets no push from the sid
   add_body(scene, identity, 1.0, {0.0, 0.0}, true);
   add_body(scene, [](Vec2 p) { return Vec2{0.9 + 0.05 * (p.x - p.y), 1.05 + 0.05 * (p.x + p.y)}; }, 1.0, {0.0, -4.0});
   ContactSolver solver = pair_solver(scene, method);
-  solver.solve(scene.mesh, scene.particles, dt_mid, dt_next);
+  solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
   CHECK(scene.mesh.nodes.u[4] == Approx(0.0).margin(1e-12));
   check_vec(solver.overlap_reaction_force(ContactPoint::node(4)), {0.0, 0.0}, 1e-9);
   if (method == ReactionMethod::gauss_seidel) {

@@ -3,6 +3,7 @@
 // scenario pairs (both ways), self-contact of a body's own boundary, and rigid walls that push but
 // never pull. Works on the velocities after the predictor: each reaction changes velocities by
 // dt^n R W, and the predicted positions x* = x^n + dt^{n+1/2} u follow.
+#include <cstdint>
 #include <vector>
 
 #include "krug/contact/broad_phase.hpp"
@@ -78,6 +79,38 @@ struct ContactPoint {
   friend constexpr bool operator==(ContactPoint, ContactPoint) = default;
 };
 
+// What a contact solve reads and writes of the mesh's nodes: positions x^n and per-DOF inverse masses
+// (0 where a condition holds the component) read; the predicted velocities u* written, each reaction
+// applied to them as the sweeps go (u^{n+1/2} = u* + dt^n R / M).
+struct NodesView {
+  const double* x = nullptr;
+  const double* y = nullptr;
+  double* u = nullptr;
+  double* v = nullptr;
+  const double* inverse_mass_x = nullptr;
+  const double* inverse_mass_y = nullptr;
+};
+inline NodesView nodes_view(NodeFields& nodes) {
+  return {nodes.x.data(), nodes.y.data(), nodes.u.data(), nodes.v.data(), nodes.inv_mass_x.data(),
+          nodes.inv_mass_y.data()};
+}
+
+// The same of the free particles, with their masses, radii and the bodies they came from (read).
+struct ParticlesView {
+  Index size = 0;
+  const double* x = nullptr;
+  const double* y = nullptr;
+  double* u = nullptr;
+  double* v = nullptr;
+  const double* mass = nullptr;
+  const double* radius = nullptr;
+  const std::int32_t* body = nullptr;
+};
+inline ParticlesView particles_view(Particles& particles) {
+  return {particles.size(),       particles.x.data(),    particles.y.data(),      particles.u.data(),
+          particles.v.data(),     particles.mass.data(), particles.radius.data(), particles.body.data()};
+}
+
 class ContactSolver {
  public:
   ContactSolver() = default;
@@ -87,8 +120,9 @@ class ContactSolver {
   void rebuild_boundaries(const Mesh& mesh);
 
   // Applies the reactions to the velocities of nodes and particles (which hold the predicted
-  // velocities u*). Records the reaction force on each touched point for the ledger.
-  ContactStatistics solve(Mesh& mesh, Particles& particles, double dt_mid, double dt_next);
+  // velocities u*). Records the reaction force on each touched point for the ledger. The boundaries
+  // (rebuild_boundaries) are those of the mesh the node view shows.
+  ContactStatistics solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next);
 
   // The points that received a reaction in the last solve, in the order they first did.
   const std::vector<ContactPoint>& touched_points() const { return touched_; }
@@ -162,14 +196,14 @@ class ContactSolver {
                       double dt_mid);
   // A point's state (node or particle), inline: the reaction loops call them for every candidate and
   // sweep. The Index forms are for mesh nodes (segment ends, boundary nodes).
-  Vec2 position(Index node) const { return mesh_->nodes.position(node); }
-  Vec2 velocity(Index node) const { return mesh_->nodes.velocity(node); }
+  Vec2 position(Index node) const { return {nodes_.x[node], nodes_.y[node]}; }
+  Vec2 velocity(Index node) const { return {nodes_.u[node], nodes_.v[node]}; }
   Vec2 predicted(Index node, double dt) const { return position(node) + dt * velocity(node); }
   Vec2 position(ContactPoint point) const {
-    return point.is_particle() ? particles_->position(point.index) : mesh_->nodes.position(point.index);
+    return point.is_particle() ? Vec2{particles_.x[point.index], particles_.y[point.index]} : position(point.index);
   }
   Vec2 velocity(ContactPoint point) const {
-    return point.is_particle() ? particles_->velocity(point.index) : mesh_->nodes.velocity(point.index);
+    return point.is_particle() ? Vec2{particles_.u[point.index], particles_.v[point.index]} : velocity(point.index);
   }
   Vec2 predicted(ContactPoint point, double dt) const { return position(point) + dt * velocity(point); }
   // The box a segment sweeps over the step: its ends at x^n and at the predicted positions.
@@ -184,16 +218,16 @@ class ContactSolver {
   InverseMass inverse_mass(ContactPoint point) const {
     if (!point.exists()) return {};
     if (point.is_particle()) {
-      const double inverse = 1.0 / particles_->mass[point.index];
+      const double inverse = 1.0 / particles_.mass[point.index];
       return {inverse, inverse};
     }
-    return {mesh_->nodes.inv_mass_x[point.index], mesh_->nodes.inv_mass_y[point.index]};
+    return {nodes_.inverse_mass_x[point.index], nodes_.inverse_mass_y[point.index]};
   }
-  double radius(ContactPoint point) const { return point.is_particle() ? particles_->radius[point.index] : 0.0; }
+  double radius(ContactPoint point) const { return point.is_particle() ? particles_.radius[point.index] : 0.0; }
   void touch(ContactPoint point, Vec2 force);
 
-  Mesh* mesh_ = nullptr;
-  Particles* particles_ = nullptr;
+  NodesView nodes_;          // of the current solve
+  ParticlesView particles_;
   std::vector<double> particle_reaction_x_, particle_reaction_y_;
   std::vector<double> particle_overlap_x_, particle_overlap_y_;
   bool overlapping_ = false;  // the reaction being applied is that of a contact with a pre-existing overlap
