@@ -308,3 +308,41 @@ TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, 
     }
   }
 }
+
+// The stiffness hourglass state of a zone driven in its hourglass mode grows by k mu dt (|b|^2/A) q a
+// step; with hourglass.plastic_limit k_p it stops at k_p Y0 |b| (docs/theory.md §2 step 1) and stays
+// there, and without the bound it passes it. A square of side h: b_p = dA/dx_p = (+-h/2, +-h/2), so
+// |b|^2 = 4 h^2 / 2 and |b| = h sqrt(2), computed here from the corners, not by the kernel.
+TEST_CASE("hydro kernels: the hourglass stiffness state stops at the plastic bound", "[hydro][kernel][hourglass]") {
+  const double h = 1.0e-3, flow_stress = 3.0e7, speed = 5.0;
+  const quad::Corners square{Vec2{0.0, 0.0}, Vec2{h, 0.0}, Vec2{h, h}, Vec2{0.0, h}};
+  const double b_norm = std::sqrt(2.0) * h;
+  ZoneForceParams params = stress_only();
+  params.hourglass.stiffness = 0.05;
+  params.shear_modulus = 5.7e9;  // lead
+  params.flow_stress = flow_stress;
+  params.previous_time_step = 1.0e-7;  // 285 N/m a step (q = 5 m/s): the k_p = 1 bound in 149 steps
+  for (const double limit : {1.0, 0.5, 0.0}) {
+    INFO("plastic_limit " << limit);
+    params.hourglass.plastic_limit = limit;
+    Mesh mesh = one_zone(square, GeometryKind::planar, 11340.0, 0.0);
+    set_velocities(mesh, [&](Index p) { return Vec2{p % 2 == 0 ? speed : -speed, 0.0}; });  // the hourglass mode
+    const double bound = limit * flow_stress * b_norm;
+    double largest = 0.0, previous = 0.0;
+    bool grew = true;
+    for (int step = 0; step < 400; ++step) {
+      compute_forces<GeometryKind::planar>(mesh, params);
+      const double size = std::hypot(mesh.zones.hourglass_x[0], mesh.zones.hourglass_y[0]);
+      grew = grew && size >= previous;
+      previous = size;
+      largest = std::max(largest, size);
+      if (limit > 0.0) REQUIRE(size <= bound * (1.0 + 1e-14));
+    }
+    CHECK(grew);  // the state never shrinks while the mode is driven one way
+    if (limit > 0.0) {
+      CHECK(largest == Approx(bound).epsilon(1e-14));  // reached, and held there
+    } else {
+      CHECK(largest > 2.0 * flow_stress * b_norm);  // unbounded: far past the k_p = 1 bound
+    }
+  }
+}

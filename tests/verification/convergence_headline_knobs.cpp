@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,19 +37,27 @@ namespace {
 struct Outcome {
   double whole = 0.0, piece = 0.0, eroded = 0.0, backward = 0.0;  // dU/U0, dU/U0, fractions of the bullet
   double energy_drift = 0.0;
+  std::vector<double> hourglass_share;  // per body: hourglass work over internal plus converted energy
 };
 
-Outcome run_with_erosion(const std::filesystem::path& file, double altitude_ratio) {
+// The scenario `file` with its JSON paths set to the values of `edits`, run to its final answer.
+Outcome run_with(const std::filesystem::path& file, const std::vector<io::ScenarioEdit>& edits,
+                 const std::string& label) {
   const std::string text = verification::read_text(file);
-  const std::string edited = io::edit_scenario(
-      text, {{"materials.lead.erosion.altitude_ratio", format_number("%g", altitude_ratio)}}, file.string());
-  const io::Scenario scenario = io::parse_scenario(edited, file.string() + " (erosion " + format_number("%g", altitude_ratio) + ")");
+  const std::string edited = io::edit_scenario(text, edits, file.string());
+  const io::Scenario scenario = io::parse_scenario(edited, file.string() + " (" + label + ")");
   REQUIRE(scenario.penetration.has_value());
   output::RunOptions options;
-  options.output_directory = std::filesystem::current_path() / ("headline_erosion_" + std::to_string(::getpid())) /
-                             (file.stem().string() + "_" + format_number("%g", altitude_ratio));
+  options.output_directory = std::filesystem::current_path() / ("headline_knobs_" + std::to_string(::getpid())) /
+                             (file.stem().string() + "_" + label);
   Outcome out;
-  options.on_finish = [&](const Simulation& sim) { out.energy_drift = sim.ledger().relative_energy_drift(); };
+  options.on_finish = [&](const Simulation& sim) {
+    out.energy_drift = sim.ledger().relative_energy_drift();
+    for (Index b = 0; b < static_cast<Index>(sim.bodies().size()); ++b) {
+      const double put_in = sim.internal_energy(b) + sim.converted_energy(b);
+      out.hourglass_share.push_back(put_in > 0.0 ? sim.hourglass_work(b) / put_in : 0.0);
+    }
+  };
   const run::RunResult result = output::run_scenario(scenario, options);
   std::filesystem::remove_all(options.output_directory.parent_path());
   REQUIRE(result.status == run::RunStatus::completed);
@@ -60,6 +69,11 @@ Outcome run_with_erosion(const std::filesystem::path& file, double altitude_rati
   out.eroded = p.eroded_mass / p.initial_mass;
   out.backward = p.backward_mass / p.initial_mass;
   return out;
+}
+
+Outcome run_with_erosion(const std::filesystem::path& file, double altitude_ratio) {
+  const std::string value = format_number("%g", altitude_ratio);
+  return run_with(file, {{"materials.lead.erosion.altitude_ratio", value}}, "erosion_" + value);
 }
 
 }  // namespace
@@ -86,5 +100,44 @@ TEST_CASE("Headline: the whole bullet's loss moves less than 0.01 over lead eros
     }
     INFO(target << ": whole dU/U0 from " << lowest << " to " << highest);
     CHECK(highest - lowest < 0.01);
+  }
+}
+
+// The hourglass coefficients (viscous and stiffness together) at 0.02 and 0.15, against the default
+// 0.05: the largest piece's loss may move by less than 0.005 between 0.02 and 0.15, so that the
+// headline does not depend on the hourglass control. Measured, piece dU/U0 at 0.02 / 0.15 (the
+// stiffness state bounded by the flow stress, hourglass.plastic_limit 1; scripts/paper_study.py
+// --groups knobs, docs/validation/headline_knobs_z5.csv and headline_knobs_z10.csv):
+//   5 zones per mm:  monolithic 0.1324 / 0.1322 (0.0001), layered 0.1889 / 0.1938 (0.0048)
+//   10 zones per mm: monolithic 0.1187 / 0.1183 (0.0004), layered 0.1759 / 0.1812 (0.0052: the full
+//                    run fails here, by 0.0002)
+// (unbounded, as before: 0.044 and 0.040 at 5 zones per mm, 0.013 and 0.026 at 10). The default 0.05
+// lies outside the two in some cases (layered at 10 zones per mm: 0.168): the spread between
+// variants is scatter of about 0.01, no longer a trend with the coefficient. Each body's hourglass
+// work, as a share of its internal plus converted energy, is reported (the bullet's stays above 10 %:
+// 11.1 % at 5, 12.9 % at 10 zones per mm, monolithic).
+TEST_CASE("Headline: the largest piece's loss moves less than 0.005 between hourglass coefficients 0.02 and 0.15",
+          "[paper][hourglass][headline]") {
+  const bool full = verification::convergence_scale() >= 1.0;
+  const std::filesystem::path folder = std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / (full ? "" : "coarse");
+  const std::string suffix = full ? "_2.6g.json" : "_2.6g_z5.json";
+  for (const std::string target : {"monolithic_3mm", "layered_3x1mm"}) {
+    std::vector<double> piece;
+    for (const char* k : {"0.02", "0.15"}) {
+      const Outcome o =
+          run_with(folder / (target + suffix), {{"controls.hourglass.viscous", k}, {"controls.hourglass.stiffness", k}},
+                   std::string("hourglass_") + k);
+      std::string shares;
+      for (const double share : o.hourglass_share) shares += format_number(" %.3f", share);
+      INFO(target << ", hourglass " << k << ": piece " << o.piece << ", whole " << o.whole << "; hourglass shares"
+                  << shares);
+      report("Headline, " + target + (full ? " (10 zones/mm)" : " (5 zones/mm)"),
+             std::string("hourglass ") + k + ": piece dU/U0; whole, hourglass share per body", "-", o.piece,
+             format_number("whole %.4f;", o.whole) + shares, 0, 0.0);
+      CHECK(o.energy_drift < 1e-12);
+      piece.push_back(o.piece);
+    }
+    INFO(target << ": piece dU/U0 " << piece[0] << " at 0.02, " << piece[1] << " at 0.15");
+    CHECK(std::abs(piece[1] - piece[0]) < 0.005);
   }
 }
