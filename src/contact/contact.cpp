@@ -12,12 +12,20 @@ namespace {
 // relative to the segment length) and started the step outside it or within this depth.
 constexpr double end_slack = 1e-3;
 constexpr double start_depth = 0.25;
-// A particle's candidates are searched over its swept path widened by this fraction of its radius
-// beyond its size: the reactions change its velocity during the solve, and a pair the search missed
-// is never seen (docs/verification.md, E8).
-constexpr double particle_search_margin = 0.1;
-
 }  // namespace
+
+double particle_escape(const Particles& particles, double dt) {
+  double escape = 0.0;
+  for (Index i = 0; i < particles.size(); ++i) {
+    const Vec2 start = particles.position(i);
+    const Vec2 searched = start + dt * Vec2{particles.u_old[i], particles.v_old[i]};
+    const Vec2 end = start + dt * particles.velocity(i);
+    const double beyond = std::max({std::min(start.x, searched.x) - end.x, end.x - std::max(start.x, searched.x),
+                                    std::min(start.y, searched.y) - end.y, end.y - std::max(start.y, searched.y), 0.0});
+    escape = std::max(escape, beyond / (particle_search_margin * particles.radius[i]));
+  }
+  return escape;
+}
 
 ContactSolver::ContactSolver(ContactSetup setup, const Mesh& mesh,
                              const std::vector<std::pair<Index, Index>>& body_zone_ranges)

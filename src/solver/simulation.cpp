@@ -96,8 +96,22 @@ void Simulation::step() {
   last_step_mid_ = 0.5 * (state_.time_step_previous + state_.time_step_next);
   try {
     compute_forces();
-    predict_velocities();
-    solve_contact_reactions();
+    // 2 and 3. The step was chosen from the particles' velocities before this solve (step 8), and the
+    // solve can speed a particle up: one pinched between two others is driven out sideways, many times
+    // faster, and may pass through another that is not among its candidates. When the solve moves a
+    // particle beyond the reach they were searched over, the predictor and the solve are repeated with
+    // half the step that would have kept it within reach (at most `most_repeats` times); F^n stays.
+    constexpr int most_repeats = 8;
+    const Ledger before_predictor = state_.ledger;  // the predictor books the held components' work
+    const double deepest_gap = state_.deepest_contact_gap;
+    for (int repeat = 0;; ++repeat) {
+      predict_velocities();
+      solve_contact_reactions();
+      const double escape = contact_.empty() ? 0.0 : contact::particle_escape(state_.particles, state_.time_step_next);
+      if (!(escape > 1.0) || repeat == most_repeats) break;
+      repeat_shorter(0.5 * state_.time_step_next / escape, before_predictor, deepest_gap);
+    }
+    book_artificial_work();
     correct_and_move();
     update_zones();
     conduct_heat();
@@ -144,24 +158,48 @@ void Simulation::compute_forces() {
   if (!area_weighted_work_.empty()) area_weighted_scale(state_.mesh, bodies_, area_weighted_scale_, area_weighted_booking_);
   const AreaWeightedArrays area_weighted{area_weighted_scale_.data(), area_weighted_booking_.data(),
                                          area_weighted_work_.data()};
-  const double dt_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
+  artificial_power_.resize(bodies_.size());
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
     const ZoneForceParams params = zone_force_params(material, controls_, state_.time_step_previous);
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
-    const ArtificialPower power =
+    artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] =
         body_corner_forces(state_.mesh, body, geometry_, params, controls_.threads, area_weighted, limiters);
-    state_.ledger.energy.viscous += dt_mid * power.viscous;
-    state_.ledger.energy.hourglass += dt_mid * power.hourglass;
-    const std::size_t b = static_cast<std::size_t>(&body - bodies_.data());
-    state_.body_viscous_work[b] += dt_mid * power.viscous;
-    state_.body_hourglass_work[b] += dt_mid * power.hourglass;
   }
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     sum_corner_forces(state_.mesh, node_corners_, first, last);
   });
   if (boundary_.has_loads()) boundary_.apply_loads(state_.mesh.nodes, state_.mesh.zones, geometry_, state_.time);
+}
+
+void Simulation::repeat_shorter(double dt, const Ledger& before_predictor, double deepest_gap) {
+  NodeFields& nodes = state_.mesh.nodes;
+  nodes.u.swap(nodes.u_old);  // back to u^{n-1/2}
+  nodes.v.swap(nodes.v_old);
+  state_.particles.u = state_.particles.u_old;
+  state_.particles.v = state_.particles.v_old;
+  state_.ledger = before_predictor;
+  state_.deepest_contact_gap = deepest_gap;
+  if (dt < state_.time_step_floor) {
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s (a particle driven beyond its contact search "
+                     "reach)",
+                     dt, state_.time_step_floor),
+         state_.controlling_zone);
+  }
+  state_.time_step_next = dt;
+  time_step_limit_ = TimeStepLimit::particle_travel;
+  last_step_mid_ = 0.5 * (state_.time_step_previous + state_.time_step_next);
+}
+
+void Simulation::book_artificial_work() {
+  const double dt_mid = 0.5 * (state_.time_step_previous + state_.time_step_next);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    state_.ledger.energy.viscous += dt_mid * artificial_power_[b].viscous;
+    state_.ledger.energy.hourglass += dt_mid * artificial_power_[b].hourglass;
+    state_.body_viscous_work[b] += dt_mid * artificial_power_[b].viscous;
+    state_.body_hourglass_work[b] += dt_mid * artificial_power_[b].hourglass;
+  }
 }
 
 void Simulation::predict_velocities() {

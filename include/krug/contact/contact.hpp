@@ -79,6 +79,17 @@ struct ContactPoint {
   friend constexpr bool operator==(ContactPoint, ContactPoint) = default;
 };
 
+// A particle's candidates are searched over its swept path at the velocity before the solve, widened
+// by this fraction of its radius beyond its size: the reactions change its velocity during the solve,
+// and a pair the search missed is never seen (docs/verification.md, E8).
+inline constexpr double particle_search_margin = 0.1;
+
+// How far the last solve moved a particle beyond the reach its candidates were searched over, in
+// units of the search margin (its path over dt at u_old, the velocity before the solve: a particle
+// feels no other force), the largest over the particles; 0 when every particle stayed within it.
+// Above 1 a particle may have met another, or a face, that is not among its candidates.
+double particle_escape(const Particles& particles, double dt);
+
 // What a contact solve reads and writes of the mesh's nodes: positions x^n and per-DOF inverse masses
 // (0 where a condition holds the component) read; the predicted velocities u* written, each reaction
 // applied to them as the sweeps go (u^{n+1/2} = u* + dt^n R / M).

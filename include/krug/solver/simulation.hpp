@@ -8,6 +8,7 @@
 #include "krug/contact/contact.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/fracture/failure_law.hpp"
+#include "krug/hydro/zone_forces.hpp"
 #include "krug/particles/particles.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
@@ -131,6 +132,9 @@ class Simulation {
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from the predicted gaps; the contact solver applies it as it goes:
                                   //    u^{n+1/2} = u* + dt^n R / M (nothing without contact)
+  // 2-3 again with the shorter step dt: the velocities, ledger and deepest gap as before the predictor.
+  void repeat_shorter(double dt, const Ledger& before_predictor, double deepest_gap);
+  void book_artificial_work();    // the viscous and hourglass work of step 1 over the final dt^n
   void correct_and_move();        // 4. the contact and boundary work of R; x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
   void conduct_heat();            // 5b. artificial heat conduction between zones (if on)
@@ -163,6 +167,7 @@ class Simulation {
   NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
+  std::vector<ArtificialPower> artificial_power_;  // per body, of step 1 (booked once dt^n is final)
 
   TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
   double last_step_mid_ = 0.0;  // dt^n of the last step (last_step_mid)
