@@ -71,6 +71,13 @@ Outcome run_with(const std::filesystem::path& file, const std::vector<io::Scenar
   return out;
 }
 
+// The paper's 2.6 g scenario of a target (monolithic_3mm, layered_3x1mm): 10 zones per mm for the
+// full study, 5 (examples/paper/coarse/) otherwise.
+std::filesystem::path headline_scenario(const std::string& target, bool full) {
+  const std::filesystem::path folder = std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / (full ? "" : "coarse");
+  return folder / (target + (full ? "_2.6g.json" : "_2.6g_z5.json"));
+}
+
 Outcome run_with_erosion(const std::filesystem::path& file, double altitude_ratio) {
   const std::string value = format_number("%g", altitude_ratio);
   return run_with(file, {{"materials.lead.erosion.altitude_ratio", value}}, "erosion_" + value);
@@ -81,12 +88,10 @@ Outcome run_with_erosion(const std::filesystem::path& file, double altitude_rati
 TEST_CASE("Headline: the whole bullet's loss moves less than 0.01 over lead erosion thresholds 0.05 to 0.2",
           "[paper][erosion][headline]") {
   const bool full = verification::convergence_scale() >= 1.0;
-  const std::filesystem::path folder = std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / (full ? "" : "coarse");
-  const std::string suffix = full ? "_2.6g.json" : "_2.6g_z5.json";
   for (const std::string target : {"monolithic_3mm", "layered_3x1mm"}) {
     double lowest = 1.0, highest = -1.0;
     for (const double ratio : {0.05, 0.1, 0.2}) {
-      const Outcome o = run_with_erosion(folder / (target + suffix), ratio);
+      const Outcome o = run_with_erosion(headline_scenario(target, full), ratio);
       INFO(target << ", erosion " << ratio << ": whole " << o.whole << ", piece " << o.piece << ", eroded " << o.eroded
                   << ", backward " << o.backward);
       report("Headline, " + target + (full ? " (10 zones/mm)" : " (5 zones/mm)"),
@@ -119,13 +124,11 @@ TEST_CASE("Headline: the whole bullet's loss moves less than 0.01 over lead eros
 TEST_CASE("Headline: the largest piece's loss moves less than 0.005 between hourglass coefficients 0.02 and 0.15",
           "[paper][hourglass][headline]") {
   const bool full = verification::convergence_scale() >= 1.0;
-  const std::filesystem::path folder = std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / (full ? "" : "coarse");
-  const std::string suffix = full ? "_2.6g.json" : "_2.6g_z5.json";
   for (const std::string target : {"monolithic_3mm", "layered_3x1mm"}) {
     std::vector<double> piece;
     for (const char* k : {"0.02", "0.15"}) {
       const Outcome o =
-          run_with(folder / (target + suffix), {{"controls.hourglass.viscous", k}, {"controls.hourglass.stiffness", k}},
+          run_with(headline_scenario(target, full), {{"controls.hourglass.viscous", k}, {"controls.hourglass.stiffness", k}},
                    std::string("hourglass_") + k);
       std::string shares;
       for (const double share : o.hourglass_share) shares += format_number(" %.3f", share);

@@ -233,6 +233,17 @@ inline TaylorMeasures taylor_measures(const Mesh& mesh, const Body& body, const 
   return m;
 }
 
+// Runs a Taylor bar (the scene's first body, its impact face at z = 0) to its end time; requires it to
+// get there and returns the bar's measures at the end.
+inline TaylorMeasures advance_taylor(Run& run) {
+  const Body& bar = run.simulation.bodies().front();
+  const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);
+  advance(run);
+  INFO(run.failure);
+  REQUIRE(run.completed());
+  return taylor_measures(run.simulation.mesh(), bar, face);
+}
+
 struct TaylorLevel {
   int axial = 0, radial = 0;
   TaylorMeasures measures;
