@@ -37,6 +37,13 @@ double internal_energy(const ZoneFields& zones, Index zone_begin, Index zone_end
   return sum;
 }
 
+std::vector<Fragment> body_fragments(const Mesh& mesh, const Body& body, GeometryKind geometry) {
+  std::vector<Fragment> pieces = connected_pieces(mesh, body.zone_begin, body.zone_end);
+  for (Fragment& f : pieces) f.mass *= whole_body_factor(geometry);
+  std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
+  return pieces;
+}
+
 Index body_of_zone(const std::vector<Body>& bodies, Index zone) {
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (zone >= bodies[b].zone_begin && zone < bodies[b].zone_end) return static_cast<Index>(b);

@@ -48,6 +48,12 @@ void derive_masses(Mesh& mesh, const std::vector<Body>& bodies, const std::vecto
       }
     }
   }
+  // Per-DOF inverse masses (the boundary then zeroes the held components).
+  for (Index p = 0; p < nodes.size(); ++p) {
+    const double inverse = nodes.mass[p] > 0.0 ? 1.0 / nodes.mass[p] : 0.0;
+    nodes.inv_mass_x[p] = inverse;
+    nodes.inv_mass_y[p] = inverse;
+  }
 }
 
 std::vector<Index> count_zones_per_node(const Mesh& mesh) {

@@ -55,13 +55,7 @@ void Simulation::initialise() {
   nodes.x0 = nodes.x;
   nodes.y0 = nodes.y;
   if (fracture_enabled_) state_.zones_per_node = count_zones_per_node(state_.mesh);
-  // Per-DOF inverse masses, zero where a condition holds the component (the axis in RZ among them).
-  for (Index p = 0; p < nodes.size(); ++p) {
-    const double inverse = nodes.mass[p] > 0.0 ? 1.0 / nodes.mass[p] : 0.0;
-    nodes.inv_mass_x[p] = inverse;
-    nodes.inv_mass_y[p] = inverse;
-  }
-  boundary_.initialise(nodes, geometry_);
+  boundary_.initialise(nodes, geometry_);  // zero inverse masses where a condition holds (the axis in RZ among them)
 
   evaluate_initial_eos(zones, bodies_, materials_);
   build_edge_continuations(state_.mesh);
@@ -182,9 +176,8 @@ void Simulation::repeat_shorter(double dt, const Ledger& before_predictor, doubl
   state_.ledger = before_predictor;
   state_.deepest_contact_gap = deepest_gap;
   if (dt < state_.time_step_floor) {
-    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s (a particle driven beyond its contact search "
-                     "reach)",
-                     dt, state_.time_step_floor),
+    const std::string why = "(a particle driven beyond its contact search reach)";
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s {}", dt, state_.time_step_floor, why),
          state_.controlling_zone);
   }
   state_.time_step_next = dt;
@@ -322,14 +315,9 @@ void Simulation::choose_time_step() {
 }
 
 void Simulation::fail(const std::string& what, Index zone) const {
-  std::string body_name = "?";
-  long local = zone;
-  for (const Body& body : bodies_) {
-    if (zone >= body.zone_begin && zone < body.zone_end) {
-      body_name = body.name;
-      local = zone - body.zone_begin;
-    }
-  }
+  const Index b = body_of_zone(zone);
+  const std::string body_name = b >= 0 ? bodies_[static_cast<std::size_t>(b)].name : "?";
+  const long local = b >= 0 ? zone - bodies_[static_cast<std::size_t>(b)].zone_begin : zone;
   throw NumericalFailure(fmt::format("body '{}', zone {}, t = {:.6e} s (cycle {}): {}", body_name, local, state_.time,
                                      state_.cycle, what),
                          body_name, local, state_.time);
@@ -350,23 +338,10 @@ void Simulation::convert_fractured_zones() {
                 {state_.ledger, state_.body_converted_energy, state_.fracture_counts});
   topology_changed_ = true;
   // The step limit now comes from the zones that remain.
-  const ZoneFields& zones = state_.mesh.zones;
-  state_.stable_time_step = std::numeric_limits<double>::infinity();
-  for (Index z = 0; z < zones.size(); ++z) {
-    if (zones.active[z] && zones.stable_time_step[z] < state_.stable_time_step) {
-      state_.stable_time_step = zones.stable_time_step[z];
-      state_.controlling_zone = z;
-    }
-  }
+  const StableStep remaining = smallest_stable_step(state_.mesh.zones);
+  state_.stable_time_step = remaining.time_step;
+  if (remaining.zone >= 0) state_.controlling_zone = remaining.zone;
   measure_ledger(state_.mesh, state_.particles, state_.ledger);
 }
-
-std::vector<Fragment> Simulation::fragments(const Body& body) const {
-  std::vector<Fragment> pieces = connected_pieces(state_.mesh, body.zone_begin, body.zone_end);
-  for (Fragment& f : pieces) f.mass *= whole_body_factor();
-  std::sort(pieces.begin(), pieces.end(), [](const Fragment& a, const Fragment& b) { return a.mass > b.mass; });
-  return pieces;
-}
-
 
 }  // namespace krug

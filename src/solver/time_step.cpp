@@ -1,6 +1,7 @@
 #include "krug/solver/time_step.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace krug {
 
@@ -18,6 +19,17 @@ TimeStepChoice limit_time_step(double stable, double previous, const Controls& c
   }
   choice.time_step = dt;
   return choice;
+}
+
+StableStep smallest_stable_step(const ZoneFields& zones) {
+  StableStep smallest{std::numeric_limits<double>::infinity(), -1};
+  for (Index z = 0; z < zones.size(); ++z) {
+    if (zones.active[z] && zones.stable_time_step[z] < smallest.time_step) {
+      smallest.time_step = zones.stable_time_step[z];
+      smallest.zone = z;
+    }
+  }
+  return smallest;
 }
 
 }  // namespace krug

@@ -7,6 +7,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/fracture/failure_law.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/pieces.hpp"
 
 namespace krug {
 
@@ -41,6 +42,10 @@ BodySummary summarise_body(const Mesh& mesh, const Body& body, GeometryKind geom
 
 // Sum m e over the active zones of [zone_begin, zone_end), in zone order (per radian or per m).
 double internal_energy(const ZoneFields& zones, Index zone_begin, Index zone_end);
+
+// Connected pieces of a body's remaining zones (by shared edges; connected_pieces), heaviest first,
+// masses for the whole body (x 2 pi in RZ).
+std::vector<Fragment> body_fragments(const Mesh& mesh, const Body& body, GeometryKind geometry);
 
 // The body owning a zone (its index in `bodies`), -1 for none.
 Index body_of_zone(const std::vector<Body>& bodies, Index zone);

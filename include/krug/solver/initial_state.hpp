@@ -9,6 +9,7 @@
 #include "krug/mesh/mesh.hpp"
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
+#include "krug/solver/time_step.hpp"
 
 namespace krug {
 
@@ -17,7 +18,8 @@ namespace krug {
 // volumes: median-mesh corner areas in planar geometry (Caramana et al. 1998), the consistent lumped
 // masses integral N_p r dA in RZ, so that the corner forces dV/dx_p accelerate axis nodes correctly.
 // Reads the positions and zones.density; writes zones.density (where <= 0), area, volume, mass,
-// initial_altitude, corner_mass, subzone_mass and nodes.mass. Throws InputError on a zone of
+// initial_altitude, corner_mass, subzone_mass, nodes.mass and the per-DOF inverse masses
+// nodes.inv_mass_x/y (1/M, 0 for a node without mass). Throws InputError on a zone of
 // non-positive area or volume, naming the body.
 void derive_masses(Mesh& mesh, const std::vector<Body>& bodies, const std::vector<Material>& materials,
                    GeometryKind geometry);
@@ -29,11 +31,6 @@ std::vector<Index> count_zones_per_node(const Mesh& mesh);
 // zones.density and specific_energy; writes pressure and sound_speed. Throws InputError on a
 // non-finite state, naming the body.
 void evaluate_initial_eos(ZoneFields& zones, const std::vector<Body>& bodies, const std::vector<Material>& materials);
-
-struct StableStep {
-  double time_step;  // s; +infinity where no zone sets a speed
-  Index zone = -1;   // the zone that sets it
-};
 
 // The stable step of the first cycle: per active zone, the CFL number of its body times its stable
 // length over its stress-wave speed plus twice the spread of its corner velocities (a zone must not

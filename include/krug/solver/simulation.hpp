@@ -110,7 +110,7 @@ class Simulation {
   BodySummary summarise(const Body& body) const { return summarise_body(state_.mesh, body, geometry_); }
   // Connected pieces of a body's remaining zones (by shared edges; connected_pieces), heaviest first,
   // masses for the whole body (x 2 pi in RZ).
-  std::vector<Fragment> fragments(const Body& body) const;
+  std::vector<Fragment> fragments(const Body& body) const { return body_fragments(state_.mesh, body, geometry_); }
   const Particles& particles() const { return state_.particles; }
   const FractureCounts& fracture_counts(Index body) const { return state_.fracture_counts[static_cast<std::size_t>(body)]; }
   // Plastic work done in one body's zones so far (J per radian or per m; the ledger's plastic line is their sum).
