@@ -121,9 +121,7 @@ void mesh_fields(Io& io, MeshT& mesh) {
 
 template <class Io, class ParticlesT>
 void particle_fields(Io& io, ParticlesT& p) {
-  for (auto* v : {&p.x, &p.y, &p.u, &p.v, &p.u_old, &p.v_old, &p.mass, &p.radius}) io.vector(*v);
-  io.vector(p.body);
-  io.vector(p.birth_time);
+  for_each_particle_field(p, [&](std::string_view, auto& field) { io.vector(field); });
 }
 
 struct TimedValue {
@@ -330,11 +328,9 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
     r.corrupt("the zone count per node has the wrong length");  // empty without fracture
   }
   const auto particles = s.particles.x.size();
-  for (const auto* v : {&s.particles.y, &s.particles.u, &s.particles.v, &s.particles.u_old, &s.particles.v_old,
-                        &s.particles.mass, &s.particles.radius, &s.particles.birth_time}) {
-    if (v->size() != particles) r.corrupt("particle fields of different lengths");
-  }
-  if (s.particles.body.size() != particles) r.corrupt("particle fields of different lengths");
+  for_each_particle_field(s.particles, [&](std::string_view field_name, const auto& field) {
+    if (field.size() != particles) r.corrupt(fmt::format("particle field {} has {} entries for {} particles", field_name, field.size(), particles));
+  });
   const auto bodies = s.fracture_counts.size();
   auto in_range = [](Index i, std::size_t size) { return i >= 0 && static_cast<std::size_t>(i) < size; };
   for (const ZoneCorners& corners : s.mesh.zones.corners) {

@@ -38,4 +38,23 @@ struct Particles {
   }
 };
 
+// The particles' field registry: each member with its name, in the order checkpoints write them.
+// A new member is one line here (checkpoints and their checks walk it); the size check below stops
+// the build when a member has none.
+template <class ParticlesT, class F>
+void for_each_particle_field(ParticlesT& p, F&& f) {
+  f("x", p.x);
+  f("y", p.y);
+  f("u", p.u);
+  f("v", p.v);
+  f("u_old", p.u_old);
+  f("v_old", p.v_old);
+  f("mass", p.mass);
+  f("radius", p.radius);
+  f("body", p.body);
+  f("birth_time", p.birth_time);
+}
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(Particles) == 10 * 24,
+              "Particles changed: add the field to for_each_particle_field");
+
 }  // namespace krug
