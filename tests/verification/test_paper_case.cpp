@@ -196,7 +196,7 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
   CHECK(run.momentum_error < 1e-9);
   CHECK(run.energy_drift < 1e-9);
   // Contact only takes energy, but for the work of pushing out a pre-existing overlap (its own line;
-  // docs/verification.md G5, C7): measured from -2.6e-2 to -3e-4 of the initial energy over the 120 runs of
+  // docs/verification.md G5, C7): measured from -4.4e-2 to -3e-4 of the initial energy over the 139 runs of
   // the paper study (scripts/paper_study.py, all groups at 5 and 10 zones per mm).
   INFO(name << ": (W_contact - W_overlap) / energy scale " << run.contact_excess);
   CHECK(run.contact_excess <= 1e-12);
