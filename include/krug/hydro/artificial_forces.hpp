@@ -1,0 +1,251 @@
+#pragma once
+// Step 1's artificial forces on a batch of zones (the parts of compute_corner_forces, zone_forces.hpp):
+// the scalar and the edge viscosity, subzonal pressures and hourglass control.
+//
+// Artificial viscosity, edge form (Caramana, Shashkov & Whalen 1998): on each compressing edge
+// (du . dx < 0) the damper force kappa du acts between its nodes,
+//   kappa |du| = rho (1 - psi) [c_q s |du| + sqrt(c_q^2 s^2 |du|^2 + c_l^2 c^2)] |S| |cos| (x w_S in RZ CV),
+// S the median-mesh segment from the zone centre to the edge midpoint, cos the cosine between du and
+// the normal of S (a velocity difference along S, a shear across the edge, gets no viscosity: without
+// this factor Saltzman's skewed grid tangled, docs/verification.md F5); psi the limiter built from the
+// velocity gradients of the continuing edges (psi = 1 for a velocity field linear along the edge), so
+// the viscosity stays off in uniform compression. The damper only dissipates: power = -kappa |du|^2.
+//
+// Hourglass (Flanagan & Belytschko 1981): f_p = -(Q_visc + Q_stiff) gamma_p with
+// Q_visc = k_v rho c sqrt(A) q, dQ_stiff = k_s mu dt (b.b/A) q, q = sum_p gamma_p u_p.
+#include <algorithm>
+#include <cmath>
+
+#include "krug/hydro/zone_batch.hpp"
+
+namespace krug {
+namespace detail {
+
+// Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only,
+// added to the batch's pressure; writes zones.viscous_speed and adds its dissipation q (-dV/dt) to
+// `viscous_power` in zone order (the rate of work the edge model books as its dampers' dissipation).
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_scalar_viscosity(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+                                                          const ForceSettings settings, double& viscous_power) {
+  double power = viscous_power;
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const std::array<Vec2, 4> b = batch.area_gradient(i);
+    const double area = batch.area[i];
+    double volume = area;
+    std::array<Vec2, 4> volume_gradient = b;
+    if constexpr (G == GeometryKind::axisymmetric) {
+      volume = quad::axisymmetric_volume(x);
+      volume_gradient = quad::axisymmetric_volume_gradient(x);
+    }
+    double volume_rate = 0.0;
+    for (int p = 0; p < 4; ++p) volume_rate += dot(u[p], volume_gradient[p]);
+    const double divergence = volume_rate / volume;
+    const double rho = zones.density[z];
+    if (divergence < 0.0) {
+      const double length = quad::smallest_altitude(x, area);
+      const double speed = settings.cq_s * length * -divergence;
+      const double q = rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * zones.sound_speed[z]);
+      batch.pressure[i] += q;
+      zones.viscous_speed[z] = 2.0 * speed;
+      power += q * -volume_rate;
+    } else {
+      zones.viscous_speed[z] = 0.0;
+    }
+  }
+  viscous_power = power;
+}
+
+// Subzonal pressure forces (Caramana & Shashkov, J. Comput. Phys. 142, 1998), added to the batch's
+// forces. Corner p's region of the median mesh, S_p = (x_p, (x_p + x_p+1)/2, centre, (x_p-1 + x_p)/2),
+// keeps its initial mass m_p (zones.subzone_mass); its density m_p / V(S_p) differs from the zone's
+// when the zone distorts, and the difference dp_p = k c^2 (rho_p - rho) acts on the nodes as the
+// pressure of a region does: f_q += dp_p dV(S_p)/dx_q, with V the zone's volume measure (area, or
+// integral of r dA in axisymmetric geometry). These are corner forces like the others, so the
+// compatible update books their work in the zone's internal energy: momentum and energy stay exact.
+// For motion that keeps the regions' volume ratios (affine motion; in RZ also a uniform scaling about
+// the origin) every dp_p is zero.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
+                                                         const ForceSettings settings) {
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    const quad::Corners x = batch.corners(i);
+    const double rho = zones.density[z];
+    const double stiffness = settings.subzonal * zones.sound_speed[z] * zones.sound_speed[z];
+    const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
+    const Vec2 middle = quad::centre(x);
+    std::array<Vec2, 4> force{};
+    for (int p = 0; p < 4; ++p) {
+      const quad::Corners region = quad::corner_region(x, p, middle);
+      double volume = 0.0;
+      std::array<Vec2, 4> g;  // dV(S_p)/d(region corner j)
+      if constexpr (G == GeometryKind::axisymmetric) {
+        volume = quad::axisymmetric_volume(region);
+        g = quad::axisymmetric_volume_gradient(region);
+      } else {
+        volume = quad::area(region);
+        g = quad::area_gradient(region);
+      }
+      if (!(volume > 0.0)) continue;  // a collapsed region (the axis corner of a degenerate quad)
+      const double dp = stiffness * (subzone_mass[p] / volume - rho);
+      // Region corner j as a combination of the zone's nodes: x_p; (x_p + x_p+1)/2; the centre; (x_p-1 + x_p)/2.
+      const Vec2 quarter = 0.25 * g[2];
+      const int n = quad::next(p), o = quad::next(n), m = quad::prev(p);
+      force[p] += dp * (g[0] + 0.5 * g[1] + quarter + 0.5 * g[3]);
+      force[n] += dp * (0.5 * g[1] + quarter);
+      force[o] += dp * quarter;
+      force[m] += dp * (quarter + 0.5 * g[3]);
+    }
+    for (int p = 0; p < 4; ++p) {
+      batch.fx[p][i] += force[p].x;
+      batch.fy[p][i] += force[p].y;
+    }
+  }
+}
+
+// Edge viscosity (CSW 1998) on the compressing edges, added to the batch's forces; writes
+// zones.viscous_speed and adds each damper's dissipation to `viscous_power` in zone and edge order.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_edge_viscosity(ZoneBatch& batch, int count, Index first, Mesh& mesh,
+                                                        Index zone_begin, const ZoneForceParams& params,
+                                                        const ForceSettings settings,
+                                                        AreaWeightedArrays area_weighted_arrays,
+                                                        SharedEdgeLimiters shared_limiters, double& viscous_power) {
+  constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
+  const bool area_weighted = axisymmetric && settings.area_weighted;  // a constant false in planar code
+  ZoneFields& zones = mesh.zones;
+  double power = viscous_power;  // a local running sum (in a register), added to in the same order
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    bool expanding = true;  // no edge compressing: no viscosity
+    for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
+    if (expanding) {
+      zones.viscous_speed[z] = 0.0;
+      continue;
+    }
+    const ZoneCorners& n = zones.corners[z];
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const double rho = zones.density[z];
+    const double c = zones.sound_speed[z];
+    const Vec2 centre = quad::centre(x);
+    double viscous_speed = 0.0;
+#pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
+    for (int k = 0; k < 4; ++k) {
+      const int k1 = quad::next(k);
+      if (n[k] == n[k1]) continue;
+      const Vec2 du = u[k1] - u[k];
+      const Vec2 dx = x[k1] - x[k];
+      if (batch.edge_compression[k][i] >= 0.0) continue;  // expanding or shearing edge: no viscosity
+      const double du_norm = norm(du);
+      if (!(du_norm > 1e-150)) continue;  // a negligible difference: no viscosity (and no denormals)
+      const double psi = params.viscosity.limiter ? zone_edge_limiter(mesh, z, k, zone_begin, du, dx, shared_limiters)
+                                                  : 0.0;
+      const double active = 1.0 - psi;
+      if (!(active > 0.0)) continue;
+      const Vec2 median = 0.5 * (x[k] + x[k1]) - centre;  // S, from the zone centre to the edge midpoint
+      // |S| x |cos(du, n_S)|: the damper acts on the part of du across the median segment (CSW98).
+      double face = std::abs(du.y * median.x - du.x * median.y) / du_norm;
+      // RZ control volume: the radius weight w_S = (r_edge + 2 r_centre) / 3, not the radius of S's midpoint
+      // (r_edge + r_centre) / 2. The CV pressure force on corner p along z is p b_p,z (r_{p-1} + r_p + r_{p+1}) / 3
+      // (dV/dz_p), and w_S is the mean of that weight over the edge's two nodes, so that a viscous pressure
+      // acts through the same r-weights as the pressure, which the consistent nodal mass (F1) matches.
+      // Interior nodes of a uniform grid see the same sum as before; an axis node saw 3/4 of the
+      // deceleration of its neighbours off the axis (the spherical Noh's axis row, docs/verification.md).
+      if (axisymmetric && !area_weighted) face *= centre.y + median.y / 3.0;
+      const double quadratic = settings.cq_s * du_norm;
+      const double q_over_du =
+          rho * active * (quadratic + std::sqrt(quadratic * quadratic + settings.cl * settings.cl * c * c));
+      const double kappa = q_over_du * face;  // force per unit velocity difference
+      batch.fx[k][i] += kappa * du.x;
+      batch.fy[k][i] += kappa * du.y;
+      batch.fx[k1][i] -= kappa * du.x;
+      batch.fy[k1][i] -= kappa * du.y;
+      double dissipation = kappa * dot(du, du);
+      if (area_weighted) {
+        // The planar damper's work with the nodes' booking weights: in J per radian, like the other
+        // forms; their mean over the edge is an approximation.
+        dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
+      }
+      power += dissipation;
+      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+    }
+    zones.viscous_speed[z] = viscous_speed;
+  }
+  viscous_power = power;
+}
+
+// Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
+// rates, the stiffness state (zones.hourglass_x/y, intact zones only), and the batch's hourglass power.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_hourglass_forces(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+                                                          const ZoneForceParams& params, const ForceSettings settings) {
+  for (int i = 0; i < count; ++i) {
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const std::array<Vec2, 4> b = batch.area_gradient(i);
+    const std::array<double, 4> gamma = quad::hourglass_shape(x, b, batch.area[i]);
+    Vec2 rate{};
+    for (int p = 0; p < 4; ++p) rate += gamma[p] * u[p];
+    double bb = 0.0;
+    for (int p = 0; p < 4; ++p) bb += dot(b[p], b[p]);
+    for (int p = 0; p < 4; ++p) batch.gamma[p][i] = gamma[p];
+    batch.rate_x[i] = rate.x;
+    batch.rate_y[i] = rate.y;
+    batch.bb[i] = bb;
+  }
+  // The stiffness state's increment of this step (Q^n - Q^{n-1} = k dt^{n-1/2} q), kept for the power.
+  double increment_x[zone_batch], increment_y[zone_batch];
+  for (int i = 0; i < count; ++i) increment_x[i] = increment_y[i] = 0.0;
+  if (settings.hourglass_stiff) {
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      if (!zones.active[z] || zones.damaged[z]) continue;  // damaged: no shear stiffness
+      const double area = batch.area[i];
+      increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+      increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
+      double qx = zones.hourglass_x[z] + increment_x[i];
+      double qy = zones.hourglass_y[z] + increment_y[i];
+      if (settings.hourglass_bound > 0.0) {
+        const double bound = settings.hourglass_bound * std::sqrt(batch.bb[i]);
+        const double size = std::sqrt(qx * qx + qy * qy);
+        if (size > bound) {
+          qx *= bound / size;
+          qy *= bound / size;
+          increment_x[i] = qx - zones.hourglass_x[z];
+          increment_y[i] = qy - zones.hourglass_y[z];
+        }
+      }
+      zones.hourglass_x[z] = qx;
+      zones.hourglass_y[z] = qy;
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    const double viscous = params.hourglass.viscous * zones.density[z] * zones.sound_speed[z] * std::sqrt(batch.area[i]);
+    const double scale = G == GeometryKind::axisymmetric && !settings.area_weighted ? batch.mean_radius[i] : 1.0;
+    const Vec2 generalised{scale * (viscous * batch.rate_x[i] + zones.hourglass_x[z]),
+                           scale * (viscous * batch.rate_y[i] + zones.hourglass_y[z])};
+    for (int p = 0; p < 4; ++p) {
+      batch.fx[p][i] -= batch.gamma[p][i] * generalised.x;
+      batch.fy[p][i] -= batch.gamma[p][i] * generalised.y;
+    }
+    // The power booked on the hourglass line takes the stiffness state at the step's middle,
+    // (Q^{n-1} + Q^n) / 2: its sum over steps is then the change of the stored energy |Q|^2 / 2k, which
+    // the exact work of these forces at the mid-step velocity also telescopes to. With Q^n alone, each
+    // step booked k dt^2 |q|^2 / 2 more, a sum that grows without bound in a long vibration although
+    // the forces store the energy and give it back.
+    const Vec2 booked{generalised.x - 0.5 * scale * increment_x[i], generalised.y - 0.5 * scale * increment_y[i]};
+    batch.hourglass_power[i] = dot(booked, Vec2{batch.rate_x[i], batch.rate_y[i]});
+  }
+}
+
+}  // namespace detail
+
+}  // namespace krug
