@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "problems.hpp"
 
@@ -71,7 +71,7 @@ std::uint64_t fnv1a(const std::vector<double>& values) {
   return hash;
 }
 
-SimulationSetup from_file(const std::string& file) { return krug::io::load_scenario(file).setup; }
+SimulationSetup from_file(const std::string& file) { return krug::scenario::load_scenario(file).setup; }
 
 }  // namespace
 

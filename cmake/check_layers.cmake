@@ -7,7 +7,7 @@
 #
 # The order, lowest first, as ranks; modules of one rank (material, fracture, particles; contact,
 # boundary) are siblings that must not include one another.
-set(order core mesh material fracture particles contact boundary hydro solver setup io run output)
+set(order core mesh material fracture particles contact boundary hydro solver setup scenario run output)
 set(rank_core 0)
 set(rank_mesh 1)
 set(rank_material 2)
@@ -18,7 +18,7 @@ set(rank_boundary 3)
 set(rank_hydro 4)
 set(rank_solver 5)
 set(rank_setup 6)
-set(rank_io 7)
+set(rank_scenario 7)
 set(rank_run 8)
 set(rank_output 9)
 

@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/text_file.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/output/text_file.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/output/ballistic_files.hpp"
 #include "krug/run/ballistic.hpp"
 #include "plots.hpp"
@@ -64,11 +64,11 @@ int run_ballistic(const BallisticArguments& arguments, const Workers& workers, c
   // ends are checked by the reader before anything runs.
   const std::filesystem::path scenario(arguments.scenario);
   const std::string text = read_file(scenario);
-  (void)io::parse_scenario(text, scenario.string());
+  (void)scenario::parse_scenario(text, scenario.string());
   const run::BallisticProjectile projectile = run::ballistic_projectile(text, scenario.string());
   for (double v : {options.v_min, options.v_max}) {
     try {
-      (void)io::parse_scenario(run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string(), arguments.end_time_factor),
+      (void)scenario::parse_scenario(run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string(), arguments.end_time_factor),
                                scenario.string());
     } catch (const InputError& e) {
       throw InputError(fmt::format("the variant at {} m/s is not a valid scenario: {}", v, e.what()));
@@ -102,14 +102,14 @@ int run_ballistic(const BallisticArguments& arguments, const Workers& workers, c
       directories.push_back(directory);
       const std::filesystem::path file = directory / "scenario.json";
       const std::string variant = run::ballistic_variant(text, projectile, v, arguments.scale_end_time, scenario.string(), arguments.end_time_factor);
-      if (const std::optional<int> finished = finished_run(directory, io::parse_scenario(variant, file.string()).resolved_json)) {
+      if (const std::optional<int> finished = finished_run(directory, scenario::parse_scenario(variant, file.string()).resolved_json)) {
         codes[i] = *finished;
         kept[i] = true;
         continue;
       }
       std::filesystem::remove_all(directory, error);
       std::filesystem::create_directories(directory, error);
-      io::write_text_atomically(file, variant);
+      output::write_text_atomically(file, variant);
       std::vector<std::string> extra;
       if (!arguments.pictures) extra = {"--no-pictures", "--no-plots"};
       jobs.push_back({file, directory, extra});

@@ -22,7 +22,7 @@
 #include "krug/core/error.hpp"
 #include "krug/material/library.hpp"
 #include "krug/output/run_files.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "pictures.hpp"
 #include "plots.hpp"
 #include "ballistic_runner.hpp"
@@ -169,9 +169,9 @@ struct Arguments {
 int run(const Arguments& args) {
   const bool restarting = !args.restart.empty();
   const std::filesystem::path checkpoint(args.restart);
-  krug::io::Scenario scenario =
-      restarting ? krug::io::load_scenario(checkpoint.parent_path() / "scenario.resolved.json")
-                 : krug::io::load_scenario(args.scenario);
+  krug::scenario::Scenario scenario =
+      restarting ? krug::scenario::load_scenario(checkpoint.parent_path() / "scenario.resolved.json")
+                 : krug::scenario::load_scenario(args.scenario);
   if (args.threads > 0) scenario.setup.controls.threads = args.threads;  // the results do not depend on it
   const std::filesystem::path directory =
       !args.out.empty() ? std::filesystem::path(args.out)
@@ -187,7 +187,7 @@ int run(const Arguments& args) {
   const bool want_pictures = args.pictures && scenario.output.pictures.enabled;
   if (want_pictures && krug::app::pictures_available()) {
     // With every_snapshot and no window of its own, the first picture fixes the view for the run.
-    auto settings = std::make_shared<krug::io::PictureSettings>(scenario.output.pictures);
+    auto settings = std::make_shared<krug::scenario::PictureSettings>(scenario.output.pictures);
     options.picture = [settings, title](const krug::Simulation& s, const std::filesystem::path& dir,
                                         const std::string& name) {
       if (settings->every_snapshot && !settings->window) settings->window = krug::app::default_fixed_window(s);
@@ -448,7 +448,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (args.command == "validate") {
-      const krug::io::Scenario scenario = krug::io::load_scenario(args.scenario);
+      const krug::scenario::Scenario scenario = krug::scenario::load_scenario(args.scenario);
       krug::run::validate_scenario(scenario);
       std::printf("krug: %s is valid (%zu bodies, %d zones)\n", args.scenario.c_str(), scenario.setup.bodies.size(),
                   scenario.setup.mesh.zones.size());

@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::app {
@@ -18,7 +18,7 @@ bool pictures_available();
 
 // Writes DIR/pictures/NAME.png (under a temporary name, then renamed). Returns false (and writes
 // nothing) when there is nothing to draw or Cairo is missing.
-bool write_picture(const Simulation& simulation, const io::PictureSettings& settings, const std::string& title,
+bool write_picture(const Simulation& simulation, const scenario::PictureSettings& settings, const std::string& title,
                    const std::filesystem::path& directory, const std::string& name);
 
 // The default fixed view of `pictures.every_snapshot` (when no `pictures.window` is given): what the

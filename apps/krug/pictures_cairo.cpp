@@ -131,7 +131,7 @@ bool pictures_available() { return true; }
 extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
 #endif
 
-bool write_picture(const Simulation& simulation, const io::PictureSettings& settings, const std::string& title,
+bool write_picture(const Simulation& simulation, const scenario::PictureSettings& settings, const std::string& title,
                    const std::filesystem::path& directory, const std::string& name) {
   const Mesh& mesh = simulation.mesh();
   const Particles& particles = simulation.particles();

@@ -5,7 +5,7 @@ namespace krug::app {
 
 bool pictures_available() { return false; }
 
-bool write_picture(const Simulation&, const io::PictureSettings&, const std::string&, const std::filesystem::path&,
+bool write_picture(const Simulation&, const scenario::PictureSettings&, const std::string&, const std::filesystem::path&,
                    const std::string&) {
   return false;
 }

@@ -4,20 +4,21 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "krug/io/scenario.hpp"
-#include "krug/io/sweep.hpp"
+#include "krug/scenario/scenario.hpp"
+#include "krug/output/sweep_files.hpp"
+#include "krug/scenario/edit.hpp"
 
 namespace krug::app {
 
 int run_sweep(const SweepArguments& arguments, const Workers& workers, const std::atomic<bool>& interrupted,
               const volatile std::sig_atomic_t& signal_number) {
-  std::vector<io::SweepParameter> parameters;
-  for (const std::string& set : arguments.sets) parameters.push_back(io::parse_sweep_set(set));
+  std::vector<scenario::SweepParameter> parameters;
+  for (const std::string& set : arguments.sets) parameters.push_back(scenario::parse_sweep_set(set));
   const std::filesystem::path scenario(arguments.scenario);
   const std::filesystem::path out =
       arguments.out.empty() ? std::filesystem::path("out") / (scenario.stem().string() + "-sweep")
                             : std::filesystem::path(arguments.out);
-  const std::vector<io::SweepVariant> variants = io::prepare_sweep(scenario, parameters, out);
+  const std::vector<scenario::SweepVariant> variants = output::prepare_sweep(scenario, parameters, out);
 
   // Resuming: a variant whose folder holds a finished run of the same scenario keeps it.
   std::vector<int> codes(variants.size(), -1);
@@ -25,8 +26,8 @@ int run_sweep(const SweepArguments& arguments, const Workers& workers, const std
   std::vector<std::size_t> variant_of;  // list index -> variant index
   std::size_t kept = 0;
   for (std::size_t i = 0; i < variants.size(); ++i) {
-    const io::SweepVariant& v = variants[i];
-    const std::optional<int> finished = finished_run(v.directory, io::load_scenario(v.scenario).resolved_json);
+    const scenario::SweepVariant& v = variants[i];
+    const std::optional<int> finished = finished_run(v.directory, scenario::load_scenario(v.scenario).resolved_json);
     if (finished) {
       codes[i] = *finished;
       ++kept;
@@ -55,7 +56,7 @@ int run_sweep(const SweepArguments& arguments, const Workers& workers, const std
     }
   });
   for (std::size_t k = 0; k < run_codes.size(); ++k) codes[variant_of[k]] = run_codes[k];
-  io::write_sweep_table(out, parameters, variants);
+  output::write_sweep_table(out, parameters, variants);
   const auto completed = static_cast<std::size_t>(std::count(codes.begin(), codes.end(), 0));
   const auto failed = static_cast<std::size_t>(std::count(codes.begin(), codes.end(), 1));
   const auto started = static_cast<std::size_t>(std::count_if(run_codes.begin(), run_codes.end(), [](int c) { return c >= 0; }));

@@ -1,5 +1,5 @@
 #pragma once
-// `krug sweep`: runs the variants of a scenario (krug::io::prepare_sweep) as `krug run` child
+// `krug sweep`: runs the variants of a scenario (krug::output::prepare_sweep) as `krug run` child
 // processes of this same executable (on this machine or on MPI ranks: study.hpp), skips those a
 // previous sweep into the same folder finished, and writes DIR/sweep.csv.
 #include <atomic>

@@ -1,6 +1,6 @@
 #pragma once
 // Umbrella header of the Krug library: numerics and scenes built in C++ (the scenario reader is in
-// krug/io/, the run loop in krug/run/, the run's files in krug/output/).
+// krug/scenario/, the run loop in krug/run/, the run's files in krug/output/).
 #include "krug/core/error.hpp"
 #include "krug/core/geometry_kind.hpp"
 #include "krug/core/vec2.hpp"

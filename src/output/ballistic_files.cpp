@@ -9,13 +9,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "krug/io/sweep.hpp"
-#include "krug/io/text_file.hpp"
+#include "krug/output/text_file.hpp"
 
 namespace krug::output {
 
-using io::csv_field;
-using io::write_text_atomically;
 using run::BallisticOutcome;
 using run::BallisticStudy;
 using run::CurveFit;

@@ -9,11 +9,10 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/text_file.hpp"
+#include "krug/output/text_file.hpp"
 
 namespace krug::output {
 
-using io::write_text_atomically;
 using run::PenetrationRecord;
 using run::StopWindow;
 using run::TimeStepRecord;

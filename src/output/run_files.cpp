@@ -23,7 +23,7 @@ RunResult restart_scenario(const std::filesystem::path& checkpoint, const RunOpt
     throw InputError(fmt::format("{}: missing; a restart needs the resolved scenario written next to the checkpoint",
                                  resolved.string()));
   }
-  return restart_scenario(io::load_scenario(resolved), checkpoint, options);
+  return restart_scenario(scenario::load_scenario(resolved), checkpoint, options);
 }
 
 RunResult restart_scenario(const Scenario& scenario, const std::filesystem::path& checkpoint_file,

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "krug/core/error.hpp"
-#include "krug/io/sweep.hpp"
+#include "krug/scenario/edit.hpp"
 
 namespace krug::run {
 
@@ -413,7 +413,7 @@ std::string ballistic_variant(const std::string& scenario_text, const BallisticP
                               bool scale_end_time, const std::string& origin, double end_time_factor) {
   const double factor = speed / projectile.speed;
   const OrderedJson velocity = {projectile.velocity[0] * factor, projectile.velocity[1] * factor};
-  std::vector<io::ScenarioEdit> edits = {
+  std::vector<scenario::ScenarioEdit> edits = {
       {fmt::format("bodies[{}].initial.velocity", projectile.body), velocity.dump()}};
   const bool stretched = scale_end_time && speed < projectile.speed;
   if (projectile.end_time > 0.0 && (stretched || end_time_factor != 1.0)) {
@@ -426,7 +426,7 @@ std::string ballistic_variant(const std::string& scenario_text, const BallisticP
                                      : std::string();
   const std::string title = fmt::format("{}{}ballistic run at {:.2f} m/s", base_title, base_title.empty() ? "" : " - ", speed);
   edits.push_back({"title", OrderedJson(title).dump()});
-  return io::edit_scenario(scenario_text, edits, origin);
+  return scenario::edit_scenario(scenario_text, edits, origin);
 }
 
 std::string ballistic_run_name(double speed) { return fmt::format("v{:07.2f}", speed); }

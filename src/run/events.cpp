@@ -49,7 +49,7 @@ std::string describe_zone(const Simulation& simulation, Index zone) {
   return fmt::format("{} zone {}", b.name, zone - b.zone_begin);
 }
 
-std::vector<std::string> start_up_lines(const io::Scenario& scenario, const Simulation& simulation) {
+std::vector<std::string> start_up_lines(const scenario::Scenario& scenario, const Simulation& simulation) {
   std::vector<std::string> lines;
   const GeometryKind g = simulation.geometry();
   lines.push_back(fmt::format("{} geometry ({}, {}), end time {:.4g} s{}",

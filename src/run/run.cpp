@@ -12,7 +12,7 @@
 
 namespace krug::run {
 
-using io::StopRule;
+using scenario::StopRule;
 
 namespace {
 

@@ -10,8 +10,9 @@
 
 #include "test_support.hpp"
 #include "krug/core/error.hpp"
-#include "krug/io/scenario.hpp"
-#include "krug/io/sweep.hpp"
+#include "krug/scenario/scenario.hpp"
+#include "krug/output/sweep_files.hpp"
+#include "krug/scenario/edit.hpp"
 #include "krug/material/library.hpp"
 
 namespace fs = std::filesystem;
@@ -31,13 +32,13 @@ std::string scenario_with(const std::string& material) {
 }
 
 Json resolved_material(const std::string& material) {
-  const krug::io::Scenario s = krug::io::parse_scenario(scenario_with(material), "materials.json");
+  const krug::scenario::Scenario s = krug::scenario::parse_scenario(scenario_with(material), "materials.json");
   return Json::parse(s.resolved_json)["materials"]["plate"];
 }
 
 std::string error_of(const std::string& material) {
   try {
-    (void)krug::io::parse_scenario(scenario_with(material), "materials.json");
+    (void)krug::scenario::parse_scenario(scenario_with(material), "materials.json");
   } catch (const krug::InputError& e) {
     return e.what();
   }
@@ -92,9 +93,9 @@ TEST_CASE("a set with overrides: keys merge into a block, another model replaces
   CHECK(linear["eos"] == Json({{"model", "linear"}, {"bulk_modulus", 1.4e11}}));
   CHECK(linear["density"] == 8930.0);
   // The resolved scenario reads back to itself (a restart reads it).
-  const krug::io::Scenario first = krug::io::parse_scenario(
+  const krug::scenario::Scenario first = krug::scenario::parse_scenario(
       scenario_with(R"({"base": "lead", "erosion": {"altitude_ratio": 0.1}})"), "first.json");
-  const krug::io::Scenario again = krug::io::parse_scenario(first.resolved_json, "resolved.json");
+  const krug::scenario::Scenario again = krug::scenario::parse_scenario(first.resolved_json, "resolved.json");
   CHECK(again.resolved_json == first.resolved_json);
 }
 
@@ -151,14 +152,14 @@ TEST_CASE("the schema's library names are the library's", "[app][materials][sche
 TEST_CASE("a sweep into a material named by a string overrides the library set", "[app][materials][sweep]") {
   const fs::path scenario = fs::path(KRUG_EXAMPLES_DIR) / "paper" / "coarse" / "monolithic_3mm_2.6g_z5.json";
   REQUIRE(krug::test::read_json(scenario)["materials"]["al6061"] == "paper-al6061-t6");
-  const auto variants = krug::io::prepare_sweep(
-      scenario, {krug::io::parse_sweep_set("materials.al6061.strength.yield_stress=2.5e8,3.0e8")},
+  const auto variants = krug::output::prepare_sweep(
+      scenario, {krug::scenario::parse_sweep_set("materials.al6061.strength.yield_stress=2.5e8,3.0e8")},
       krug::test::scratch("sweep_library"));
   REQUIRE(variants.size() == 2);
   const Json written = krug::test::read_json(variants[1].scenario)["materials"]["al6061"];
   CHECK(written == Json({{"base", "paper-al6061-t6"}, {"strength", {{"yield_stress", 3.0e8}}}}));
   const Json resolved =
-      Json::parse(krug::io::parse_scenario(krug::test::read_text(variants[1].scenario), "v.json").resolved_json);
+      Json::parse(krug::scenario::parse_scenario(krug::test::read_text(variants[1].scenario), "v.json").resolved_json);
   CHECK(resolved["materials"]["al6061"]["strength"]["yield_stress"] == 3.0e8);
   CHECK(resolved["materials"]["al6061"]["strength"]["shear_modulus"] == 2.46e10);  // the set's, kept
 }

@@ -11,7 +11,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/output/outputs.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/output/run_files.hpp"
 #include "krug/solver/history_columns.hpp"
 #include "krug/solver/output_fields.hpp"
@@ -36,13 +36,13 @@ std::size_t partial_files(const fs::path& dir) {
 TEST_CASE("a file is replaced whole or not at all", "[app][outputs]") {
   const fs::path dir = krug::test::scratch("atomic");
   const fs::path file = dir / "summary.json";
-  krug::io::write_text_atomically(file, "old\n");
-  krug::io::write_text_atomically(file, std::string(1 << 20, 'x'));  // 1 MiB, replaces the old text
+  krug::output::write_text_atomically(file, "old\n");
+  krug::output::write_text_atomically(file, std::string(1 << 20, 'x'));  // 1 MiB, replaces the old text
   CHECK(krug::test::read_text(file).size() == (1u << 20));
   CHECK(partial_files(dir) == 0);
   // A write that cannot be made (its temporary's directory is missing): an InputError naming the
   // file, and the old file untouched.
-  CHECK_THROWS_AS(krug::io::write_text_atomically(dir / "missing" / "summary.json", "new\n"), krug::InputError);
+  CHECK_THROWS_AS(krug::output::write_text_atomically(dir / "missing" / "summary.json", "new\n"), krug::InputError);
   CHECK(krug::test::read_text(file).size() == (1u << 20));
 }
 
@@ -57,7 +57,7 @@ TEST_CASE("completed and failed runs leave no partial files behind", "[app][outp
     krug::output::RunOptions options;
     options.output_directory = dir;
     const krug::run::RunResult result =
-        krug::output::run_scenario(krug::io::parse_scenario(document.dump(), scenario_file.string()), options);
+        krug::output::run_scenario(krug::scenario::parse_scenario(document.dump(), scenario_file.string()), options);
     CHECK((result.status == krug::run::RunStatus::failed) == fail);
     CHECK(partial_files(dir) == 0);
     // Complete files: the summary parses, the VTK files are closed.
@@ -121,7 +121,7 @@ std::vector<std::string> documented_fields(const std::string& mark, const std::s
 TEST_CASE("docs/outputs.md lists exactly the VTK fields written, for both geometries", "[app][outputs]") {
   const fs::path dir = krug::test::scratch("vtk_fields");
   for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
-    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    const krug::scenario::Scenario scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
     const krug::Simulation simulation(scenario.setup);
     const std::string geometry = scenario.setup.geometry == krug::GeometryKind::planar ? "planar" : "axisymmetric";
     INFO(example << " (" << geometry << ")");
@@ -195,14 +195,14 @@ TEST_CASE("the output field registry: unique names, and the VTK files write its 
   const fs::path dir = krug::test::scratch("output_registry");
   for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
     INFO(example);
-    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    const krug::scenario::Scenario scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
     krug::Simulation simulation(scenario.setup);
     krug::SimulationState state = simulation.state();
     state.particles.add({0.01, 0.001}, {-100.0, 5.0}, 1e-6, 1e-4, 1, 0.0);
     state.particles.add({0.02, 0.002}, {-50.0, 0.0}, 2e-6, 2e-4, 1, 0.0);
     simulation.restore(state);
-    krug::output::write_vtu(simulation, dir / "state.vtu", krug::io::VtkEncoding::ascii);
-    krug::output::write_vtp(simulation, dir / "particles.vtp", krug::io::VtkEncoding::ascii);
+    krug::output::write_vtu(simulation, dir / "state.vtu", krug::scenario::VtkEncoding::ascii);
+    krug::output::write_vtp(simulation, dir / "particles.vtp", krug::scenario::VtkEncoding::ascii);
     const std::string vtu = krug::test::read_text(dir / "state.vtu");
     const std::string vtp = krug::test::read_text(dir / "particles.vtp");
     const krug::GeometryKind geometry = scenario.setup.geometry;
@@ -239,7 +239,7 @@ TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the l
   for (const char* example : {"verification/slab_impact.json", "verification/taylor_bar.json"}) {
     INFO(example);
     const fs::path dir = krug::test::scratch(std::string("summary_bodies_") + (example[13] == 's' ? "slab" : "bar"));
-    const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    const krug::scenario::Scenario scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
     krug::output::RunOptions options;
     options.output_directory = dir;
     REQUIRE(krug::output::run_scenario(scenario, options).status == krug::run::RunStatus::completed);
@@ -257,10 +257,10 @@ TEST_CASE("summary.json: each body's momentum and kinetic energy add up to the l
 
 TEST_CASE("docs/outputs.md lists exactly the history.csv columns written", "[app][outputs]") {
   const fs::path dir = krug::test::scratch("history_columns");
-  const krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
+  const krug::scenario::Scenario scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
   krug::output::RunOptions options;
   options.output_directory = dir;
-  krug::io::Scenario short_run = scenario;
+  krug::scenario::Scenario short_run = scenario;
   short_run.setup.controls.end_time = 1e-7;
   REQUIRE(krug::output::run_scenario(short_run, options).status == krug::run::RunStatus::completed);
   const std::string history = krug::test::read_text(dir / "history.csv");
@@ -308,7 +308,7 @@ TEST_CASE("the history column registry: unique names, and history.csv has a cell
   // A planar scene with one body and an axisymmetric one with two.
   for (const char* example : {"verification/sod.json", "fracture/high_velocity.json"}) {
     INFO(example);
-    krug::io::Scenario scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
+    krug::scenario::Scenario scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / example);
     scenario.setup.controls.end_time = 1e-7;
     const krug::Simulation simulation(scenario.setup);
     const std::vector<std::string> names = krug::history_names(simulation);

@@ -41,7 +41,7 @@ TEST_CASE("penetration results of E1: the flyer stops at the analytic depth, the
   document["penetration"] = {{"projectile", "flyer"}};
   document["stop"] = {{"no_contact_time", 5e-7}};
   document["end_time"] = 6e-6;
-  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_penetration.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "slab_penetration.json");
   REQUIRE(scenario.stop.has_value());  // a penetration scenario always has a stop rule
   CHECK(scenario.stop->clear_of_targets);
   CHECK(scenario.stop->body == "flyer");
@@ -94,7 +94,7 @@ TEST_CASE("penetration geometry: a flyer beyond the target's rear face has perfo
   document["bodies"][0]["mesh"]["x"] = {{"from", 0.011}, {"to", 0.016}, {"zones", 20}};
   document["penetration"] = {{"projectile", "flyer"}, {"targets", {"target"}}};
   document["end_time"] = 1e-6;
-  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_beyond.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "slab_beyond.json");
   const fs::path dir = krug::test::scratch("penetration_beyond");
   krug::output::RunOptions options;
   options.output_directory = dir;
@@ -113,7 +113,7 @@ TEST_CASE("penetration geometry: a flyer beyond the target's rear face has perfo
 TEST_CASE("penetration blocks that cannot be honoured are refused with the JSON path", "[app][penetration]") {
   const auto refused = [](Json document) {
     try {
-      (void)krug::io::parse_scenario(document.dump(), "bad.json");
+      (void)krug::scenario::parse_scenario(document.dump(), "bad.json");
     } catch (const krug::InputError& e) {
       return std::string(e.what());
     }
@@ -136,7 +136,7 @@ TEST_CASE("erosion limits: a material's block is every body's default, a body's 
   Json document = slab_impact();
   document["materials"]["aluminium"]["erosion"] = {{"altitude_ratio", 0.2}, {"plastic_strain", 3.0}};
   document["bodies"][1]["erosion"] = {{"plastic_strain", 1.5}};
-  const auto scenario = krug::io::parse_scenario(document.dump(), "erosion.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "erosion.json");
   const auto& bodies = scenario.setup.bodies;
   CHECK(bodies[0].erosion().altitude_ratio == 0.2);
   CHECK(bodies[0].erosion().plastic_strain == 3.0);
@@ -151,7 +151,7 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
   Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "taylor_bar.json");
   document["materials"]["copper"]["erosion"] = {{"plastic_strain", 0.5}};
   document["end_time"] = 2e-5;
-  const auto scenario = krug::io::parse_scenario(document.dump(), "taylor_erosion.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "taylor_erosion.json");
   const fs::path dir = krug::test::scratch("taylor_erosion");
   krug::output::RunOptions options;
   options.output_directory = dir;
@@ -184,7 +184,7 @@ TEST_CASE("a penetration run restarted from a checkpoint ends with the same pene
   Json document = slab_impact();
   document["penetration"] = {{"projectile", "flyer"}};
   document["stop"] = {{"no_contact_time", 5e-7}};
-  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_penetration_restart.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "slab_penetration_restart.json");
   const fs::path whole = krug::test::scratch("penetration_whole");
   krug::output::RunOptions options;
   options.output_directory = whole;

@@ -13,7 +13,7 @@
 #include "krug/core/error.hpp"
 #include "krug/output/checkpoint.hpp"
 #include "krug/output/run_files.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -25,10 +25,10 @@ using krug::test::summary_without_timing;
 
 namespace {
 
-krug::io::Scenario scenario_with(const fs::path& file, const std::function<void(Json&)>& edit) {
+krug::scenario::Scenario scenario_with(const fs::path& file, const std::function<void(Json&)>& edit) {
   Json document = krug::test::read_json(file);
   edit(document);
-  return krug::io::parse_scenario(document.dump(), file.string());
+  return krug::scenario::parse_scenario(document.dump(), file.string());
 }
 
 RunOptions to(const fs::path& directory) {
@@ -38,7 +38,7 @@ RunOptions to(const fs::path& directory) {
 }
 
 // Runs `scenario` into `directory`, interrupting it (as SIGINT would) once the time passes `at`.
-krug::run::RunResult interrupted_run(const krug::io::Scenario& scenario, const fs::path& directory, double at) {
+krug::run::RunResult interrupted_run(const krug::scenario::Scenario& scenario, const fs::path& directory, double at) {
   std::atomic<bool> interrupt{false};
   RunOptions options = to(directory);
   options.interrupt = &interrupt;
@@ -60,7 +60,7 @@ void check_same_run(const fs::path& reference, const fs::path& restarted) {
 
 TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if never stopped", "[app][restart]") {
   const fs::path file = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
-  const auto scenario = krug::io::load_scenario(file);
+  const auto scenario = krug::scenario::load_scenario(file);
   const fs::path reference = krug::test::scratch("restart_reference");
   const fs::path stopped = krug::test::scratch("restart_interrupted");
   REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
@@ -85,7 +85,7 @@ TEST_CASE("an interrupted run writes a checkpoint and, restarted, ends as if nev
 
 TEST_CASE("a periodic checkpoint restarts into another directory with the whole history", "[app][restart]") {
   const fs::path file = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
-  const auto plain = krug::io::load_scenario(file);
+  const auto plain = krug::scenario::load_scenario(file);
   const auto with_checkpoints = scenario_with(file, [](Json& d) { d["output"]["checkpoint_interval"] = 1.5e-6; });
   const fs::path reference = krug::test::scratch("checkpoint_reference");
   const fs::path periodic = krug::test::scratch("checkpoint_periodic");
@@ -110,7 +110,7 @@ TEST_CASE("a periodic checkpoint restarts into another directory with the whole 
 
 TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart]") {
   const fs::path file = fs::path(KRUG_APP_TEST_DATA_DIR) / "fracture_plate.json";
-  const auto scenario = krug::io::load_scenario(file);
+  const auto scenario = krug::scenario::load_scenario(file);
   const fs::path reference = krug::test::scratch("fracture_reference");
   const fs::path stopped = krug::test::scratch("fracture_interrupted");
   REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
@@ -135,7 +135,7 @@ TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates"
   // plastic strain already counted in it; a restart from a checkpoint taken when some zone has
   // 0 < D < 1 must end with the same bits (final.vtu includes the field `damage`).
   const fs::path file = fs::path(KRUG_APP_TEST_DATA_DIR) / "johnson_cook_plate.json";
-  const auto scenario = krug::io::load_scenario(file);
+  const auto scenario = krug::scenario::load_scenario(file);
   const fs::path reference = krug::test::scratch("johnson_cook_reference");
   const fs::path stopped = krug::test::scratch("johnson_cook_interrupted");
   REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
@@ -157,7 +157,7 @@ TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates"
 
 TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app][restart]") {
   const fs::path file = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
-  const auto scenario = krug::io::load_scenario(file);
+  const auto scenario = krug::scenario::load_scenario(file);
   const fs::path dir = krug::test::scratch("checkpoint_damaged");
   REQUIRE(interrupted_run(scenario, dir, 1.0e-6).message == "interrupted");
   const std::string bytes = read_text(dir / "checkpoint.bin");
@@ -182,7 +182,7 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
   CHECK_THROWS_AS(krug::output::read_checkpoint(dir / "missing.bin"), krug::InputError);
 
   // A checkpoint of another mesh.
-  const auto other = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "sod.json");
+  const auto other = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "sod.json");
   CHECK_THROWS_AS(krug::output::restart_scenario(other, dir / "checkpoint.bin", to(krug::test::scratch("checkpoint_foreign"))),
                   krug::InputError);
   // An edited scenario of the same mesh continues, with a warning (here: a later end time).

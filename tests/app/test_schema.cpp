@@ -1,4 +1,4 @@
-// docs/scenario.schema.json against the reader (src/io/scenario.cpp), which stay one source of
+// docs/scenario.schema.json against the reader (src/scenario/scenario.cpp), which stay one source of
 // truth by these checks:
 //  1. every example (examples/**/*.json) and every test scenario (tests/app/data/*.json) is valid
 //     against the schema, and so is the resolved scenario the reader makes of it;
@@ -23,7 +23,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/output/run_files.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "schema_validator.hpp"
 #include "test_support.hpp"
 
@@ -67,7 +67,7 @@ bool belongs_to_geometry(const std::string& key, const std::string& geometry) {
 
 std::string error_of(const std::string& text) {
   try {
-    (void)krug::io::parse_scenario(text, "mutated.json");
+    (void)krug::scenario::parse_scenario(text, "mutated.json");
   } catch (const krug::InputError& e) {
     return e.what();
   }
@@ -108,8 +108,8 @@ TEST_CASE("every example and test scenario is valid against the schema, resolved
     const std::string text = krug::test::read_text(file);
     const auto errors = schema().validate(Json::parse(text));
     CHECK(errors == std::vector<std::string>{});
-    krug::io::Scenario scenario;
-    REQUIRE_NOTHROW(scenario = krug::io::parse_scenario(text, file.string()));
+    krug::scenario::Scenario scenario;
+    REQUIRE_NOTHROW(scenario = krug::scenario::parse_scenario(text, file.string()));
     const auto resolved_errors = schema().validate(Json::parse(scenario.resolved_json));
     CHECK(resolved_errors == std::vector<std::string>{});
   }
@@ -119,7 +119,7 @@ TEST_CASE("the keys the reader accepts are exactly the schema's properties, at e
   std::set<const Json*> visited;
   long objects = 0;
   for (const auto& file : krug::test::scenario_files()) {
-    const Json resolved = Json::parse(krug::io::parse_scenario(krug::test::read_text(file), file.string()).resolved_json);
+    const Json resolved = Json::parse(krug::scenario::parse_scenario(krug::test::read_text(file), file.string()).resolved_json);
     const std::string geometry = resolved.at("geometry").get<std::string>();
     schema().walk(resolved, [&](const std::string& path, const Json& object, const Json& object_schema, bool is_map) {
       if (is_map) return;  // materials: any name
@@ -186,7 +186,7 @@ TEST_CASE("numbers just outside the schema's bounds are rejected by both, on the
   std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return fs::file_size(a) < fs::file_size(b); });
   std::set<std::pair<const Json*, std::string>> done;
   for (const auto& file : files) {
-    const Json resolved = Json::parse(krug::io::parse_scenario(krug::test::read_text(file), file.string()).resolved_json);
+    const Json resolved = Json::parse(krug::scenario::parse_scenario(krug::test::read_text(file), file.string()).resolved_json);
     schema().walk(resolved, [&](const std::string& path, const Json& object, const Json& object_schema, bool is_map) {
       if (is_map) return;
       for (const auto& [key, value] : object.items()) {
@@ -205,7 +205,7 @@ TEST_CASE("numbers just outside the schema's bounds are rejected by both, on the
           INFO(file.filename().string() << ": " << at << " = " << v.dump());
           const Json mutated = with(v);
           CHECK_FALSE(schema().valid(mutated));
-          CHECK_THROWS_AS(krug::io::parse_scenario(mutated.dump(), "mutated.json"), krug::InputError);
+          CHECK_THROWS_AS(krug::scenario::parse_scenario(mutated.dump(), "mutated.json"), krug::InputError);
           ++checked;
         };
         // On the bound the reader may still refuse for another reason (a nose longer than its
@@ -270,7 +270,7 @@ TEST_CASE("summary.json of completed, failed and fracturing runs follows docs/su
     const fs::path dir = krug::test::scratch("summary_contract_" + std::to_string(i));
     krug::output::RunOptions options;
     options.output_directory = dir;
-    (void)krug::output::run_scenario(krug::io::parse_scenario(document.dump(), cases[i].file.string()), options);
+    (void)krug::output::run_scenario(krug::scenario::parse_scenario(document.dump(), cases[i].file.string()), options);
     const Json summary = krug::test::read_json(dir / "summary.json");
     CHECK(summary["status"] == cases[i].status);
     CHECK(summary.contains("penetration") == document.contains("penetration"));

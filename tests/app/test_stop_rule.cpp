@@ -15,7 +15,7 @@
 namespace fs = std::filesystem;
 using krug::Vec2;
 using krug::run::StopMonitor;
-using krug::io::StopRule;
+using krug::scenario::StopRule;
 using krug::test::Json;
 
 namespace {
@@ -86,7 +86,7 @@ TEST_CASE("the stop rule on made-up velocity histories", "[app][stop]") {
 TEST_CASE("a projectile run ends by the stop rule once the flyer is free (E1)", "[app][stop]") {
   Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
-  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_stop.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "slab_stop.json");
   const fs::path dir = krug::test::scratch("stop_rule_e1");
   krug::output::RunOptions options;
   options.output_directory = dir;
@@ -145,7 +145,7 @@ class CountingObserver final : public krug::run::RunObserver {
 TEST_CASE("the run loop reaches its outputs only through its observer (E1)", "[app][stop]") {
   Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}};
-  const auto scenario = krug::io::parse_scenario(document.dump(), "slab_observed.json");
+  const auto scenario = krug::scenario::parse_scenario(document.dump(), "slab_observed.json");
   REQUIRE_FALSE(fs::exists(scenario.output.directory));
 
   krug::Simulation simulation(scenario.setup);
@@ -191,7 +191,7 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
   Json document = krug::test::read_json(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   const auto run = [&](double plane, const std::string& name) {
     document["stop"] = {{"body", "flyer"}, {"no_contact_time", 5e-7}, {"clear_of", plane}};
-    const auto scenario = krug::io::parse_scenario(document.dump(), name + ".json");
+    const auto scenario = krug::scenario::parse_scenario(document.dump(), name + ".json");
     krug::output::RunOptions options;
     options.output_directory = krug::test::scratch(name);
     return krug::output::run_scenario(scenario, options);
@@ -206,7 +206,7 @@ TEST_CASE("the stop rule's clear_of plane: the run waits until the whole body ha
 }
 
 TEST_CASE("without a stop rule, summary.json says the run ran to its end time", "[app][stop]") {
-  const auto scenario = krug::io::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
+  const auto scenario = krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json");
   const fs::path dir = krug::test::scratch("stop_rule_none");
   krug::output::RunOptions options;
   options.output_directory = dir;

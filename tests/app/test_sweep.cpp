@@ -1,4 +1,4 @@
-// Parameter sweeps: the --set syntax and the variants (library API, krug::io), then `krug sweep` on
+// Parameter sweeps: the --set syntax and the variants (library API, krug::scenario), then `krug sweep` on
 // E1 (examples/verification/slab_impact.json, 60 zones) as 2 x 2 variants in 2 processes. E1 has an
 // exact answer for each variant: equal impedances, so the 5 mm flyer stops and the 10 mm target
 // leaves with half the flyer's speed (momentum m_f v = m_t v_t with m_t = 2 m_f), whatever the
@@ -8,11 +8,12 @@
 #include <map>
 
 #include "krug/core/error.hpp"
-#include "krug/io/sweep.hpp"
+#include "krug/output/sweep_files.hpp"
+#include "krug/scenario/edit.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
-using krug::io::parse_sweep_set;
+using krug::scenario::parse_sweep_set;
 
 TEST_CASE("sweep values (--set) split at top-level commas and keep JSON values whole", "[app][sweep]") {
   const auto p = parse_sweep_set(R"(materials.steel.eos=1,2.5,[3,4],"a,b",{"k":[1,2]},steel)");
@@ -28,7 +29,7 @@ TEST_CASE("sweep values (--set) split at top-level commas and keep JSON values w
 TEST_CASE("variants are the cartesian product, checked by the reader before anything runs", "[app][sweep]") {
   const fs::path scenario = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "slab_impact.json";
   const fs::path dir = krug::test::scratch("sweep_prepare");
-  const auto variants = krug::io::prepare_sweep(
+  const auto variants = krug::output::prepare_sweep(
       scenario, {parse_sweep_set("bodies[0].initial.velocity[0]=10,20,30"), parse_sweep_set("controls.cfl=0.3,0.5")}, dir);
   REQUIRE(variants.size() == 6);
   CHECK(variants[0].name == "000_velocity0=10_cfl=0.3");
@@ -43,7 +44,7 @@ TEST_CASE("variants are the cartesian product, checked by the reader before anyt
 
   auto error_of = [&](const std::string& set) {
     try {
-      (void)krug::io::prepare_sweep(scenario, {parse_sweep_set(set)}, krug::test::scratch("sweep_bad"));
+      (void)krug::output::prepare_sweep(scenario, {parse_sweep_set(set)}, krug::test::scratch("sweep_bad"));
     } catch (const krug::InputError& e) {
       return std::string(e.what());
     }
@@ -141,7 +142,7 @@ TEST_CASE("a sweep of a penetration scenario tabulates the penetration block", "
 
 TEST_CASE("edit_scenario applies edits by JSON path in memory and keeps the key order", "[app][sweep]") {
   const std::string text = R"({"title": "t", "bodies": [{"name": "a", "initial": {"velocity": [1, 2]}}], "controls": {}})";
-  const std::string edited = krug::io::edit_scenario(
+  const std::string edited = krug::scenario::edit_scenario(
       text, {{"bodies[0].initial.velocity[0]", "350"}, {"controls.fracture.altitude_ratio", "0.2"}, {"title", "new"}},
       "test");
   const auto document = nlohmann::ordered_json::parse(edited);
@@ -152,7 +153,7 @@ TEST_CASE("edit_scenario applies edits by JSON path in memory and keeps the key 
   CHECK(edited.back() == '\n');
   auto error_of = [&](const std::string& path) {
     try {
-      (void)krug::io::edit_scenario(text, {{path, "1"}}, "test");
+      (void)krug::scenario::edit_scenario(text, {{path, "1"}}, "test");
     } catch (const krug::InputError& e) {
       return std::string(e.what());
     }
@@ -162,7 +163,7 @@ TEST_CASE("edit_scenario applies edits by JSON path in memory and keeps the key 
   CHECK_THAT(error_of("title.x"), Catch::Contains("is not an object"));
   CHECK_THAT(error_of("bodies.x"), Catch::Contains("is not an object"));
   CHECK_THAT(error_of("a..b"), Catch::Contains("an empty key"));
-  CHECK_THROWS_AS(krug::io::edit_scenario("{not json", {}, "test"), krug::InputError);
+  CHECK_THROWS_AS(krug::scenario::edit_scenario("{not json", {}, "test"), krug::InputError);
 }
 
 TEST_CASE("a sweep into a folder with finished variants runs only the others (resume)", "[app][sweep]") {

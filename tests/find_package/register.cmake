@@ -15,7 +15,7 @@ set(KRUG_PACKAGE_TEST_DIR ${PROJECT_BINARY_DIR}/package-test)
 set(KRUG_PACKAGE_PREFIX ${KRUG_PACKAGE_TEST_DIR}/install)
 
 # Everything `cmake --install` copies must exist: the libraries and, when built, the app.
-set(KRUG_PACKAGE_INSTALLED_TARGETS krug_mesh krug_contact krug_boundary krug_solver krug_setup krug_io krug_run krug_output)
+set(KRUG_PACKAGE_INSTALLED_TARGETS krug_mesh krug_contact krug_boundary krug_solver krug_setup krug_scenario krug_run krug_output)
 if(TARGET krug_app)
   list(APPEND KRUG_PACKAGE_INSTALLED_TARGETS krug_app)
 endif()

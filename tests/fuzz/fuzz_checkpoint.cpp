@@ -10,12 +10,12 @@
 
 #include "krug/core/error.hpp"
 #include "krug/output/checkpoint.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "seed_scenario.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const krug::io::Scenario scenario = krug::io::parse_scenario(krug::fuzz::seed_scenario, "seed.json");
+  static const krug::scenario::Scenario scenario = krug::scenario::parse_scenario(krug::fuzz::seed_scenario, "seed.json");
   std::string bytes(reinterpret_cast<const char*>(data), size);
   constexpr std::size_t trailer = 16;  // checksum (8 bytes) and end marker (8 bytes)
   if (bytes.size() > trailer) {

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "krug/output/checkpoint.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "seed_scenario.hpp"
 
@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: make_checkpoint_seed OUTPUT_FILE\n");
     return 2;
   }
-  const krug::io::Scenario scenario = krug::io::parse_scenario(krug::fuzz::seed_scenario, "seed.json");
+  const krug::scenario::Scenario scenario = krug::scenario::parse_scenario(krug::fuzz::seed_scenario, "seed.json");
   krug::Simulation simulation(scenario.setup);
   for (int cycle = 0; cycle < 40; ++cycle) simulation.step();
   krug::output::write_checkpoint(argv[1], simulation.state(), krug::run::RunProgress{}, 1);

@@ -17,7 +17,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/output/checkpoint.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 #include "../fuzz/seed_scenario.hpp"  // the checkpoint fuzzer's scenario: a fracturing flyer and plate
 
@@ -46,7 +46,7 @@ std::string resealed(std::string bytes) {
 }  // namespace
 
 TEST_CASE("resealed, edited checkpoints are refused or restore cleanly; none crashes", "[checkpoint][robustness]") {
-  const krug::io::Scenario scenario = krug::io::parse_scenario(krug::fuzz::seed_scenario, "plate.json");
+  const krug::scenario::Scenario scenario = krug::scenario::parse_scenario(krug::fuzz::seed_scenario, "plate.json");
   krug::Simulation simulation(scenario.setup);
   for (int i = 0; i < 40; ++i) simulation.step();
   const std::filesystem::path dir =

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/krug.hpp"
 
 using namespace krug;
@@ -88,7 +88,7 @@ TEST_CASE("a run that fails part-way through a step keeps its ledger closed", "[
         "boundary": { "z_max": "fixed" } } ],
     "contact": { "pairs": [ { "bodies": ["top", "bottom"] } ] }
   })";
-  Simulation sim(io::parse_scenario(text, "test.json").setup);
+  Simulation sim(scenario::parse_scenario(text, "test.json").setup);
   bool failed = false;
   try {
     while (!sim.finished()) sim.step();

@@ -11,7 +11,7 @@
 
 #include "krug/core/error.hpp"
 #include "krug/fracture/failure_law.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 
 using namespace krug::fracture;
 
@@ -160,14 +160,14 @@ std::string scenario_with(const std::string& material) {
 }
 
 FailureLaw law_of(const std::string& material) {
-  const auto scenario = krug::io::parse_scenario(scenario_with(material), "test.json");
+  const auto scenario = krug::scenario::parse_scenario(scenario_with(material), "test.json");
   REQUIRE(scenario.setup.fracture.size() == 1);
   return scenario.setup.fracture.at(0);
 }
 
 std::string error_of(const std::string& material) {
   try {
-    (void)krug::io::parse_scenario(scenario_with(material), "test.json");
+    (void)krug::scenario::parse_scenario(scenario_with(material), "test.json");
   } catch (const krug::InputError& e) {
     return e.what();
   }

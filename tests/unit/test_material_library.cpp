@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "krug/core/error.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/material/library.hpp"
 
 namespace {
@@ -313,8 +313,8 @@ TEST_CASE("every library set is physical: sound speed, Poisson's ratio, yield be
 TEST_CASE("every library set is read by the scenario reader, by name, into the models it names", "[library]") {
   for (const library::MaterialSet& set : library::material_sets) {
     INFO(set.name);
-    krug::io::Scenario scenario;
-    REQUIRE_NOTHROW(scenario = krug::io::parse_scenario(scenario_with(fmt::format("\"{}\"", set.name)), "library.json"));
+    krug::scenario::Scenario scenario;
+    REQUIRE_NOTHROW(scenario = krug::scenario::parse_scenario(scenario_with(fmt::format("\"{}\"", set.name)), "library.json"));
     const krug::Material& m = scenario.scene.materials.front();
     CHECK(m.reference_density == constant(set, "", "density").value);
     CHECK(std::visit([](const auto& e) { return std::string(e.name); }, m.eos) == set.eos_model);

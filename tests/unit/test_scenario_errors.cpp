@@ -1,6 +1,6 @@
 // The scenario reader: a malformed scenario is an InputError that names the JSON path, what was
 // found and what was expected; unknown keys suggest the nearest valid key; unknown names list the
-// valid ones. Through the library API (krug::io::parse_scenario).
+// valid ones. Through the library API (krug::scenario::parse_scenario).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -14,10 +14,10 @@
 
 #include "krug/core/error.hpp"
 #include "krug/run/run.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 
 using krug::InputError;
-using krug::io::parse_scenario;
+using krug::scenario::parse_scenario;
 
 namespace {
 
@@ -280,13 +280,13 @@ TEST_CASE("a scenario path that is not a regular file is refused, not waited on"
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::string e = "(no error)";
   try {
-    (void)krug::io::load_scenario(fifo);
+    (void)krug::scenario::load_scenario(fifo);
   } catch (const InputError& error) {
     e = error.what();
   }
   CHECK_THAT(e, Catch::Contains("is not a regular file"));
   try {
-    (void)krug::io::load_scenario(dir);
+    (void)krug::scenario::load_scenario(dir);
   } catch (const InputError& error) {
     e = error.what();
   }
@@ -441,7 +441,7 @@ TEST_CASE("boundary loads and functions of time: bad input names the JSON path",
     CHECK_THAT(e, Catch::Contains("lies on the axis"));
   }
   SECTION("a pressure on a side that a condition also holds (a scene built in C++)") {
-    krug::io::Scenario scenario = parse_scenario(base, "test.json");
+    krug::scenario::Scenario scenario = parse_scenario(base, "test.json");
     krug::setup::SideBoundary load{"x_min", krug::setup::SideCondition::pressure, {}};
     load.pressure = [](double) { return 1e5; };
     scenario.scene.bodies[0].boundary.push_back(load);

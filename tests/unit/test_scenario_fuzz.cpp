@@ -22,7 +22,7 @@
 
 #include "../app/schema_validator.hpp"
 #include "krug/core/error.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace {
@@ -192,7 +192,7 @@ TEST_CASE("mutated scenarios are read or refused with an InputError, never anyth
     const std::string original = read_text(file);
     const Json document = Json::parse(original);
     // The resolved form carries every default, so its mutants reach keys the file leaves out.
-    const std::string resolved_text = krug::io::parse_scenario(original, file.string()).resolved_json;
+    const std::string resolved_text = krug::scenario::parse_scenario(original, file.string()).resolved_json;
     const Json resolved = Json::parse(resolved_text);
     for (int i = 0; i < 40; ++i) {
       const bool use_resolved = i % 2 == 1;
@@ -201,7 +201,7 @@ TEST_CASE("mutated scenarios are read or refused with an InputError, never anyth
                                         random, what);
       INFO(file.filename().string() << (use_resolved ? " (resolved)" : "") << ": " << what);
       try {
-        const krug::io::Scenario scenario = krug::io::parse_scenario(mutant, "mutant.json");
+        const krug::scenario::Scenario scenario = krug::scenario::parse_scenario(mutant, "mutant.json");
         ++accepted;
         const auto errors = schema.validate(Json::parse(mutant));
         INFO("schema: " << (errors.empty() ? std::string() : errors.front()));

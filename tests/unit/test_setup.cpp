@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "krug/core/error.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/setup/scene.hpp"
 #include "krug/solver/simulation.hpp"
 
@@ -100,7 +100,7 @@ std::string error_of(const setup::SceneDescription& scene) {
 }  // namespace
 
 TEST_CASE("a scene written in C++ builds the setup its scenario file builds, bit for bit", "[setup]") {
-  const io::Scenario scenario = io::parse_scenario(two_blocks_json, "two_blocks.json");
+  const scenario::Scenario scenario = scenario::parse_scenario(two_blocks_json, "two_blocks.json");
   const SimulationSetup from_file = scenario.setup;
   const SimulationSetup from_code = setup::build_simulation(two_blocks_scene(scenario.scene));
 
@@ -143,7 +143,7 @@ TEST_CASE("a scene written in C++ builds the setup its scenario file builds, bit
 }
 
 TEST_CASE("setup errors name the body: overlap, side, density, zones, material", "[setup]") {
-  const io::Scenario scenario = io::parse_scenario(two_blocks_json, "two_blocks.json");
+  const scenario::Scenario scenario = scenario::parse_scenario(two_blocks_json, "two_blocks.json");
   const setup::SceneDescription good = two_blocks_scene(scenario.scene);
   CHECK(error_of(good) == "(no error)");
 
@@ -247,7 +247,7 @@ TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, b
 
   // An unknown kind: the message lists the registry's names.
   try {
-    (void)io::parse_scenario(one_body(R"({ "type": "hexagon" })"), "test.json");
+    (void)scenario::parse_scenario(one_body(R"({ "type": "hexagon" })"), "test.json");
     FAIL("an unknown mesh type was accepted");
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == "bodies[0].mesh.type: unknown name \"hexagon\"; expected one of " + listed);
@@ -257,7 +257,7 @@ TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, b
     INFO("mesh kind " << names[index]);
     const auto sample = kind_samples.find(names[index]);
     REQUIRE(sample != kind_samples.end());  // a new kind needs its sample here
-    const io::Scenario scenario = io::parse_scenario(one_body(sample->second.block), "test.json");
+    const scenario::Scenario scenario = scenario::parse_scenario(one_body(sample->second.block), "test.json");
     const setup::MeshDescription& mesh = scenario.scene.bodies.at(0).mesh;
     CHECK(mesh.shape.index() == index);  // read into its own alternative
     CHECK(scenario.setup.mesh.zones.size() > 0);  // and generated
@@ -268,7 +268,7 @@ TEST_CASE("mesh kinds: the reader offers the registry's kinds, and each reads, b
     // The key every kind shares: "map" moves every generated node (here by 0.01 m along z).
     std::string mapped = sample->second.block;
     mapped.insert(1, R"( "map": ["z + 0.01", "r"],)");
-    const io::Scenario moved = io::parse_scenario(one_body(mapped), "test.json");
+    const scenario::Scenario moved = scenario::parse_scenario(one_body(mapped), "test.json");
     const NodeFields& before = scenario.setup.mesh.nodes;
     const NodeFields& after = moved.setup.mesh.nodes;
     REQUIRE(after.size() == before.size());

@@ -26,7 +26,7 @@ int scaled(int zones, int smallest) {
   return std::max(smallest, static_cast<int>(std::lround(zones * convergence_scale())));
 }
 
-void cure(io::Scenario& scenario) {
+void cure(scenario::Scenario& scenario) {
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
   scenario.setup.controls.viscosity.heat_conduction = 2.0;
 }
@@ -44,7 +44,7 @@ TEST_CASE("Hard cases, finer: Noh spherical on the RZ rectangle at 100 x 100 wit
   // run's cycles scaled with the zone size (n / 50), as a time step proportional to the zone gives.
   long scalar_q_cycles = 0;
   for (const int mesh : n == 50 ? std::vector<int>{50} : std::vector<int>{n, 50}) {
-    io::Scenario scalar_q = rz_rectangle::load("noh_spherical_rectangle.json", mesh);
+    scenario::Scenario scalar_q = rz_rectangle::load("noh_spherical_rectangle.json", mesh);
     scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
     const Run reference = run_to_end(scalar_q);
     report("Noh, spherical (RZ rectangle " + mesh_name(mesh, mesh) + ", scalar q)", "cycles to t = 0.6", "",
@@ -56,7 +56,7 @@ TEST_CASE("Hard cases, finer: Noh spherical on the RZ rectangle at 100 x 100 wit
     }
   }
   REQUIRE(scalar_q_cycles > 0);
-  io::Scenario scenario = rz_rectangle::load("noh_spherical_rectangle.json", n);
+  scenario::Scenario scenario = rz_rectangle::load("noh_spherical_rectangle.json", n);
   cure(scenario);
   rz_rectangle::check_noh(scenario, n, scalar_q_cycles,
                           "Noh, spherical (RZ rectangle " + mesh_name(n, n) + ", subzonal 0.5 + heat 2)");
@@ -70,7 +70,7 @@ TEST_CASE("Hard cases, finer: Sedov spherical on RZ rectangles of 100 x 100 and 
     const int n = scaled(full, 50);
     if (n == previous) continue;  // the reduced scale gives the same mesh twice
     previous = n;
-    io::Scenario scenario = rz_rectangle::load("sedov_spherical_rectangle.json", n);
+    scenario::Scenario scenario = rz_rectangle::load("sedov_spherical_rectangle.json", n);
     cure(scenario);
     rz_rectangle::check_sedov(scenario, n, "Sedov, spherical (RZ rectangle " + mesh_name(n, n) + ", subzonal 0.5 + heat 2)",
                               true);
@@ -84,7 +84,7 @@ TEST_CASE("Hard cases, finer: Noh spherical on RZ polar meshes of 200 x 60 and 2
           "[convergence][subzonal][noh]") {
   for (const auto& [full_radial, full_angular] : {std::pair{200, 60}, std::pair{200, 80}}) {
     const int radial = scaled(full_radial, 100), angular = scaled(full_angular, full_angular / 2);
-    io::Scenario scenario = load_example("noh_spherical.json", {zones(40, angular), zones(100, radial)});  // angular first: a radial count of 40x cannot collide
+    scenario::Scenario scenario = load_example("noh_spherical.json", {zones(40, angular), zones(100, radial)});  // angular first: a radial count of 40x cannot collide
     cure(scenario);
     const std::string label = "Noh, spherical (RZ polar " + mesh_name(radial, angular) + ", subzonal 0.5 + heat 2)";
     noh::check_noh(run_to_end(scenario), {label.c_str(), 3, Coordinate::radius});

@@ -35,7 +35,7 @@ TEST_CASE("Taylor bar of the library's OFHC copper against Johnson & Cook's meas
   for (const Test test : {Test{130.0, 0.770}, Test{146.0, 0.736}, Test{190.0, 0.638}}) {
     nlohmann::json document = nlohmann::json::parse(read_text(example_path("taylor_ofhc_copper.json")));
     document["bodies"][0]["initial"]["velocity"] = {-test.speed, 0.0};
-    const io::Scenario scenario = io::parse_scenario(document.dump(), "taylor_ofhc_copper.json");
+    const scenario::Scenario scenario = scenario::parse_scenario(document.dump(), "taylor_ofhc_copper.json");
     Run run(scenario.setup);
     const TaylorMeasures m = advance_taylor(run);
     const Body& bar = run.simulation.bodies().front();

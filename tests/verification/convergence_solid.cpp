@@ -52,7 +52,7 @@ PistonLevel piston_level(int n) {
   const std::string from = R"("x": { "from": 0.0, "to": 1.0, "zones": 1000 }, "y": { "from": 0.0, "to": 0.001, "zones": 1 })";
   const std::string to = R"("x": { "from": 0.0, "to": 1.0, "zones": )" + std::to_string(n) +
                          R"( }, "y": { "from": 0.0, "to": )" + format_number("%.17g", 1.0 / n) + R"(, "zones": 1 })";
-  const io::Scenario scenario = load_example("piston.json", {{from, to}});
+  const scenario::Scenario scenario = load_example("piston.json", {{from, to}});
   const Run run = run_to_end(scenario);
   INFO("piston at " << n << " zones: " << run.failure);
   REQUIRE(run.completed());

@@ -36,7 +36,7 @@ double l1_error(const Mesh& mesh, const Body& body, const ExactProfile& exact, C
 }
 
 // Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
-void apply_study_controls(io::Scenario& scenario) {
+void apply_study_controls(scenario::Scenario& scenario) {
   if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
     scenario.setup.controls.cfl = scenario.setup.controls.cfl_fluid = std::stod(cfl);
   }
@@ -65,7 +65,7 @@ void study(const Problem& p) {
                                                   {zones(p.across, -2).from, "\"zones\": -2"},
                                                   {"\"zones\": -1", zones(0, along).to},
                                                   {"\"zones\": -2", zones(0, across).to}};
-    io::Scenario scenario = load_example(p.file, substitutions);
+    scenario::Scenario scenario = load_example(p.file, substitutions);
     apply_study_controls(scenario);
     const Run run = run_to_end(scenario);
     INFO(p.name << " at " << along << " x " << across << ": " << run.failure);

@@ -28,7 +28,7 @@ struct Level {
 
 // Sod along x (or z) at `along` zones and 4 across, from `file` whose tube has 200 zones.
 Level sod_level(const std::string& file, int along) {
-  const io::Scenario scenario = load_example(file, {zones(200, along)});
+  const scenario::Scenario scenario = load_example(file, {zones(200, along)});
   const Run run = run_to_end(scenario);
   INFO(file << " at " << along << " zones: " << run.failure);
   REQUIRE(run.completed());
@@ -76,7 +76,7 @@ TEST_CASE("Refinement: Noh cylindrical on a finer polar mesh meets the E2 criter
   // with the same verification.md criteria (noh_measures.hpp): shock within 2 zones, plateau within
   // 10 %. (200 x 80 would take about 5 minutes at 250 ns per zone-cycle: the centre zones set the step.)
   const int radial = std::max(50, scaled(100)), angular = radial * 2 / 5;
-  const io::Scenario scenario = load_example("noh_cylindrical.json", {zones(50, radial), zones(20, angular)});
+  const scenario::Scenario scenario = load_example("noh_cylindrical.json", {zones(50, radial), zones(20, angular)});
   const Run run = run_to_end(scenario);
   INFO(radial << " x " << angular << " zones: " << run.failure);
   REQUIRE(run.completed());

@@ -18,7 +18,7 @@ namespace krug::verification::rz_rectangle {
 inline constexpr double rays[] = {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0};  // degrees from the z axis
 
 // The example `file` (a rectangle of 50 x 50 zones) at n x n zones.
-inline io::Scenario load(const std::string& file, int n) {
+inline scenario::Scenario load(const std::string& file, int n) {
   const std::filesystem::path path = example_path(file);
   std::string text = read_text(path);
   const std::string from = "\"zones\": 50", to = "\"zones\": " + std::to_string(n);
@@ -27,7 +27,7 @@ inline io::Scenario load(const std::string& file, int n) {
     text.replace(at, from.size(), to);
   }
   REQUIRE(replaced == 2);
-  return io::parse_scenario(text, path.string());
+  return scenario::parse_scenario(text, path.string());
 }
 
 inline Vec2 zone_centre(const Mesh& mesh, Index z) {
@@ -72,7 +72,7 @@ inline double noh_shock_on_ray(const Simulation& sim, double degrees) {
 
 // The Sedov rectangle (sedov_spherical_rectangle.json, [0, 1.2]^2 at n x n zones) run to t = 1: the
 // shock within 2 zones of r = 1 on every ray (the axis ray only when `judge_axis`), energy to 1e-12.
-inline void check_sedov(const io::Scenario& scenario, int n, const std::string& label, bool judge_axis) {
+inline void check_sedov(const scenario::Scenario& scenario, int n, const std::string& label, bool judge_axis) {
   const double zone = 1.2 / n;
   const Run run = run_to_end(scenario);
   INFO(label << ": " << run.failure);
@@ -94,7 +94,7 @@ inline void check_sedov(const io::Scenario& scenario, int n, const std::string& 
 // scalar-q run on the same mesh); shock (density crossing 40) within 2 zones of 0.2 on every ray,
 // spread over the rays <= 2 zones; plateau on r in [0.1, r_s - 2h], rays 10-80 degrees: mean within
 // 10 % of 64, worst zone within 20 %; energy to 1e-12.
-inline void check_noh(const io::Scenario& scenario, int n, long scalar_q_cycles, const std::string& label) {
+inline void check_noh(const scenario::Scenario& scenario, int n, long scalar_q_cycles, const std::string& label) {
   using noh::plateau_from;
   using noh::shock_radius;
   const Run run = run_to_end(scenario);

@@ -75,7 +75,7 @@ Profile uniaxial_run(bool axisymmetric, double piston_speed, bool plastic) {
          {"mesh", {{"type", "rectangle"}, {a, {{"from", 0.0}, {"to", 0.08}, {"zones", 800}}},
                    {b, {{"from", 0.0}, {"to", 0.0004}, {"zones", axisymmetric ? 4 : 1}}}}},
          {"boundary", boundary}}}}};
-  Run run(io::parse_scenario(document.dump(), "uniaxial rod").setup);
+  Run run(scenario::parse_scenario(document.dump(), "uniaxial rod").setup);
   advance(run);
   INFO(run.failure);
   REQUIRE(run.completed());

@@ -45,7 +45,7 @@ void check_ledgers(const Simulation& sim) {
 
 // A pressure step: the plateau behind the front and the front's position.
 void check_pressure_step(const std::string& file, const std::string& problem) {
-  const io::Scenario scenario = load_example(file);
+  const scenario::Scenario scenario = load_example(file);
   Run run(scenario.setup);
   advance(run);
   INFO(run.failure);
@@ -90,7 +90,7 @@ TEST_CASE("B1 pressure step on an elastic half-space, planar: plateau, front, le
 TEST_CASE("B2 pressure step on the end of an elastic cylinder, RZ: plateau, front, ledgers", "[B2][boundary]") {
   check_pressure_step("pressure_step_axisymmetric.json", "B2 pressure step, RZ");
   // Uniaxial strain in RZ: every row carries the same wave (no radial motion of the slip-walled cylinder).
-  const io::Scenario scenario = load_example("pressure_step_axisymmetric.json");
+  const scenario::Scenario scenario = load_example("pressure_step_axisymmetric.json");
   Run run(scenario.setup);
   advance(run);
   REQUIRE(run.completed());
@@ -106,7 +106,7 @@ TEST_CASE("B2 pressure step on the end of an elastic cylinder, RZ: plateau, fron
 
 TEST_CASE("B3 piston driven by a velocity ramp v(t): the ramp translated at c_L, sigma = -rho c_L v, ledgers",
           "[B3][boundary]") {
-  const io::Scenario scenario = load_example("ramp_piston.json");
+  const scenario::Scenario scenario = load_example("ramp_piston.json");
   constexpr double speed = 1.0, rise = 2.0e-6;
   auto piston = [&](double t) { return speed * std::clamp(t / rise, 0.0, 1.0); };
   Run run(scenario.setup);
@@ -195,7 +195,7 @@ TEST_CASE("B4 spherical cavity under a pressure step: the radial velocity agains
                             "angle": { "from": 0.0, "to": 90.0, "zones": 30 } },
                   "boundary": { "inner": { "type": "pressure", "pressure": 1.0e7 }, "end": "symmetry" } } ]
   })";
-  const io::Scenario scenario = io::parse_scenario(text, "b4.json");
+  const scenario::Scenario scenario = scenario::parse_scenario(text, "b4.json");
   Run run(scenario.setup);
   advance(run);
   INFO(run.failure);
@@ -267,7 +267,7 @@ TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau an
                                 "y_min": { "type": "velocity", "velocity": [0.0, null] },
                                 "y_max": { "type": "velocity", "velocity": [0.0, null] } } } ]
   })";
-  const io::Scenario scenario = io::parse_scenario(text, "b5.json");
+  const scenario::Scenario scenario = scenario::parse_scenario(text, "b5.json");
   Run run(scenario.setup);
   advance(run);
   INFO(run.failure);
@@ -339,7 +339,7 @@ TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau an
 TEST_CASE("runs with a pressure load or a velocity in time restart exactly", "[boundary]") {
   for (const char* file : {"pressure_step.json", "ramp_piston.json"}) {
     INFO(file);
-    const io::Scenario scenario = load_example(file);
+    const scenario::Scenario scenario = load_example(file);
     Simulation straight(scenario.setup);
     for (int k = 0; k < 150; ++k) straight.step();
     const SimulationState halfway = straight.state();

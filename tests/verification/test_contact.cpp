@@ -561,9 +561,9 @@ TEST_CASE("Contact friction with the summation method: tangential impulse f x no
 namespace {
 
 // A contact example (examples/contact/<file>) with textual substitutions (each must occur once).
-io::Scenario load_contact_example(const std::string& file, const std::vector<verification::Substitution>& substitutions) {
+scenario::Scenario load_contact_example(const std::string& file, const std::vector<verification::Substitution>& substitutions) {
   const std::filesystem::path path = std::filesystem::path(KRUG_EXAMPLES_DIR) / "contact" / file;
-  return io::parse_scenario(verification::substitute(verification::read_text(path), substitutions), path.string());
+  return scenario::parse_scenario(verification::substitute(verification::read_text(path), substitutions), path.string());
 }
 
 // Measures of a run with contact, sampled after every step.
@@ -635,7 +635,7 @@ ContactRun run_with_contact(const SimulationSetup& setup, const std::function<vo
 // has lost 10 % of its speed. No erosion, as in the example: the test is of node-on-segment contact
 // alone (erosion 0.1 would convert 12 zones of the nose's lips to particles by 30 us at this zoning).
 SimulationSetup coarse_striker(contact::ReactionMethod method) {
-  io::Scenario scenario = load_contact_example(
+  scenario::Scenario scenario = load_contact_example(
       "striker_dishing.json",
       {{"\"radial_zones\": 28", "\"radial_zones\": 8"}, verification::zones(30, 6), verification::zones(56, 11),
        verification::zones(32, 8)});
@@ -868,7 +868,7 @@ TEST_CASE("Contact layered target struck by the bullet (RZ): no plate passes thr
   // interface opens by more than a tenth of a plate zone somewhere (measured: up to 0.25 and 0.11 mm,
   // 0.7 and 0.3 of a zone, at r = 7.1 mm by 30 us, growing); the exact separation time of layers in
   // contact is the planar test above. The plates stay together on the axis, under the bullet.
-  const io::Scenario scenario = io::parse_scenario(layered_scenario(), "layered target (test_contact.cpp)");
+  const scenario::Scenario scenario = scenario::parse_scenario(layered_scenario(), "layered target (test_contact.cpp)");
   SideLine rear[2], front[2];
   {
     const Simulation probe(scenario.setup);

@@ -16,7 +16,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/krug.hpp"
 #include "verification_support.hpp"
 
@@ -25,8 +25,8 @@ using krug::verification::format_number;
 using krug::verification::report;
 
 TEST_CASE("E8 hardened-steel striker at 1.5 km/s through a 6061-T6 plate runs to the end", "[fracture][E8][high_velocity]") {
-  const io::Scenario scenario =
-      io::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
+  const scenario::Scenario scenario =
+      scenario::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
   verification::Run run(scenario.setup);
   verification::advance(run);
   INFO(run.failure);

@@ -113,7 +113,7 @@ struct Variant {
 
 Variant run_variant(const nlohmann::json& document) {
   Variant v;
-  const io::Scenario scenario = io::parse_scenario(document.dump(), "spall variant");
+  const scenario::Scenario scenario = scenario::parse_scenario(document.dump(), "spall variant");
   verification::Run run(scenario.setup);
   const Simulation& sim = run.simulation;
   const Body& target = sim.bodies()[1];

@@ -52,7 +52,7 @@ double axial_momentum(const Simulation& sim, const Body& body) {
 // different order over ~4 000 cycles (measured: see the INFO line and docs/verification.md).
 TEST_CASE("Taylor bar: the impulse of the impact-face force gauges is the bar's momentum change",
           "[gauges][E6][strength][axisymmetric]") {
-  const io::Scenario scenario = io::load_scenario(example_path("taylor_bar.json"));
+  const scenario::Scenario scenario = scenario::load_scenario(example_path("taylor_bar.json"));
   REQUIRE(scenario.gauges.forces);
   Run run(scenario.setup);
   const Simulation& sim = run.simulation;
@@ -97,7 +97,7 @@ TEST_CASE("Taylor bar: the impulse of the impact-face force gauges is the bar's 
 TEST_CASE("E1 slab impact: each held side's reaction against the exact lateral stress", "[gauges][E1][contact]") {
   nlohmann::json document = nlohmann::json::parse(read_text(example_path("slab_impact.json")));
   document["gauges"] = {{"interval", 1e-7}, {"forces", true}};
-  const io::Scenario scenario = io::parse_scenario(document.dump(), "slab_impact.json with force gauges");
+  const scenario::Scenario scenario = scenario::parse_scenario(document.dump(), "slab_impact.json with force gauges");
   Run run(scenario.setup);
   GaugeSampler gauges(scenario.gauges, run.simulation);
   const std::vector<std::string>& columns = gauges.columns();
@@ -146,7 +146,7 @@ TEST_CASE("Sod: tracers against the exact solution at their Lagrangian position"
   document["gauges"] = {{"interval", 0.01},
                         {"tracers", {{{"name", "left"}, {"position", {0.47, 0.01}}},
                                      {{"name", "right"}, {"position", {0.6, 0.01}}}}}};
-  const io::Scenario scenario = io::parse_scenario(document.dump(), "sod.json with tracers");
+  const scenario::Scenario scenario = scenario::parse_scenario(document.dump(), "sod.json with tracers");
   Run run(scenario.setup);
   GaugeSampler gauges(scenario.gauges, run.simulation);
   advance(run);
@@ -212,7 +212,7 @@ TEST_CASE("tracer temperature: Johnson-Cook's T of the zone", "[gauges]") {
                   "initial": { "specific_internal_energy": 3830.0 } } ],
     "gauges": { "interval": 1e-7, "tracers": [ { "name": "t", "position": [0.004, 0.006],
                                                  "quantities": ["temperature", "specific_energy"] } ] } })";
-  const io::Scenario scenario = io::parse_scenario(text, "copper block");
+  const scenario::Scenario scenario = scenario::parse_scenario(text, "copper block");
   Run run(scenario.setup);
   GaugeSampler gauges(scenario.gauges, run.simulation);
   REQUIRE(gauges.columns() == std::vector<std::string>{"t_temperature", "t_specific_energy"});

@@ -42,7 +42,7 @@ TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, control-volume form", 
 // Known failure F4 (docs/verification.md): the area-weighted form now keeps the rows identical, but at
 // 100 x 40 its shock runs 2.8 zones ahead and its plateau is 12.8 % low.
 TEST_CASE("Noh spherical on an RZ equal-angle polar mesh, area-weighted form", "[noh][axisymmetric][!mayfail]") {
-  io::Scenario scenario = load_example("noh_spherical.json");
+  scenario::Scenario scenario = load_example("noh_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
   check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, area weighted)", 3, Coordinate::radius});
 }
@@ -54,7 +54,7 @@ TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end (robustness)",
   // verification.md E2: the rectangular mesh only for robustness: it must reach t = 0.6 without
   // tangling or a collapsing time step; its accuracy is not judged.
   for (const AxisymmetricForm form : {AxisymmetricForm::control_volume, AxisymmetricForm::area_weighted}) {
-    io::Scenario scenario = load_example("noh_spherical_rectangle.json");
+    scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
     scenario.setup.controls.axisymmetric_form = form;
     const Run run = run_to_end(scenario);
     const std::string problem = form == AxisymmetricForm::control_volume
@@ -71,7 +71,7 @@ TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end (robustness)",
 // reach the end (verification.md E2: robustness only, accuracy not judged).
 TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end with the scalar viscosity", "[noh][axisymmetric]") {
   for (const AxisymmetricForm form : {AxisymmetricForm::control_volume, AxisymmetricForm::area_weighted}) {
-    io::Scenario scenario = load_example("noh_spherical_rectangle.json");
+    scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
     scenario.setup.controls.viscosity.model = ViscosityModel::scalar;
     scenario.setup.controls.axisymmetric_form = form;
     const Run run = run_to_end(scenario);
@@ -94,7 +94,7 @@ TEST_CASE("Noh spherical on a rectangular RZ mesh runs to the end with the scala
 TEST_CASE("Noh planar: the edge and the scalar viscosity book the same viscous work", "[noh][ledger]") {
   std::vector<double> viscous;
   for (const ViscosityModel model : {ViscosityModel::edge, ViscosityModel::scalar}) {
-    io::Scenario scenario = load_example("noh_planar.json");
+    scenario::Scenario scenario = load_example("noh_planar.json");
     scenario.setup.controls.viscosity.model = model;
     const Run run = run_to_end(scenario);
     REQUIRE(run.completed());
@@ -116,12 +116,12 @@ TEST_CASE("Noh planar: the edge and the scalar viscosity book the same viscous w
 // Measured at 50 x 50: 1 048 cycles (scalar q: 483), shock -0.4 to -0.1 zones, plateau -2.2 % mean,
 // 4.6 % worst. 100 x 100 is in convergence_hard_cases.cpp.
 TEST_CASE("Noh spherical on a rectangular RZ mesh with subzonal pressures and heat conduction", "[noh][axisymmetric][subzonal]") {
-  io::Scenario scalar_q = load_example("noh_spherical_rectangle.json");
+  scenario::Scenario scalar_q = load_example("noh_spherical_rectangle.json");
   scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
   const Run reference = run_to_end(scalar_q);
   REQUIRE(reference.completed());
 
-  io::Scenario scenario = load_example("noh_spherical_rectangle.json");
+  scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
   scenario.setup.controls.viscosity.heat_conduction = 2.0;
   rz_rectangle::check_noh(scenario, 50, reference.simulation.cycle(), "Noh, spherical (RZ rectangle 50 x 50, subzonal 0.5 + heat 2)");

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/output/run_files.hpp"
 #include "krug/run/penetration.hpp"
 #include "krug/krug.hpp"
@@ -84,7 +84,7 @@ Vec2 centroid(const Mesh& mesh, Index z) {
 }
 
 PaperRun run_paper_case(const std::string& file) {
-  const io::Scenario scenario = io::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / "coarse" / file);
+  const scenario::Scenario scenario = scenario::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "paper" / "coarse" / file);
   REQUIRE(scenario.penetration.has_value());
   REQUIRE(scenario.stop.has_value());
   PaperRun run;

@@ -37,7 +37,7 @@ constexpr double density_zone_tolerance = 0.10;
 // F5 (docs/verification.md, fixed): without the cosine factor of CSW 1998 in the edge viscosity the
 // mesh tangled at t = 0.888; with it the run reaches 0.925 (shock spread at 0.7: 0.10 zones).
 TEST_CASE("Saltzman piston: planar shock at t = 0.7 and no tangling up to t = 0.925", "[saltzman]") {
-  io::Scenario scenario = load_example("saltzman.json");
+  scenario::Scenario scenario = load_example("saltzman.json");
   const double end_time = scenario.setup.controls.end_time;
   REQUIRE(end_time == Approx(0.925).margin(1e-12));
   scenario.setup.controls.end_time = check_time;

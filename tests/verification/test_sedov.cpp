@@ -89,7 +89,7 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, control-volume form", "[sedov
 
 // Known failure F4 (docs/verification.md): symmetric, but gains 5.7 % energy and its shock is 3.5 zones out.
 TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov][axisymmetric][!mayfail]") {
-  io::Scenario scenario = load_example("sedov_spherical.json");
+  scenario::Scenario scenario = load_example("sedov_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
   check_sedov(run_to_end(scenario),
               {"Sedov, spherical (RZ polar, area weighted)", Coordinate::radius, 1.0, spherical_energy});
@@ -102,7 +102,7 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov]
 // densest axis zone at r = 1.107 on 50 x 50, 1.195 on 100 x 100, with k = 0.5): a cure for the tangle, not
 // for the axis. The shock on the axis ray is reported, not asserted.
 TEST_CASE("Sedov spherical on a rectangular RZ mesh reaches t = 1 with subzonal pressures", "[sedov][axisymmetric][subzonal]") {
-  io::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  scenario::Scenario scenario = load_example("sedov_spherical_rectangle.json");
   {
     const Run run = run_to_end(scenario);
     report("Sedov, spherical (RZ rectangle 50 x 50), default controls", "reaches t = 1", "1", run.simulation.time(),
@@ -117,7 +117,7 @@ TEST_CASE("Sedov spherical on a rectangular RZ mesh reaches t = 1 with subzonal 
 // on every ray, the axis ray included; finer meshes in convergence_hard_cases.cpp.
 TEST_CASE("Sedov spherical on a rectangular RZ mesh with subzonal pressures and heat conduction: shock on every ray",
           "[sedov][axisymmetric][subzonal]") {
-  io::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  scenario::Scenario scenario = load_example("sedov_spherical_rectangle.json");
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
   scenario.setup.controls.viscosity.heat_conduction = 2.0;
   rz_rectangle::check_sedov(scenario, 50, "Sedov, spherical (RZ rectangle 50 x 50), subzonal 0.5 + heat 2", true);

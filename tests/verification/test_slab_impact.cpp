@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/krug.hpp"
 
 using namespace krug;
 
 TEST_CASE("E1 slab impact: plateau, peak, separation, momentum and the booked impact loss", "[contact][E1]") {
-  io::Scenario scenario = io::load_scenario(KRUG_EXAMPLES_DIR "/verification/slab_impact.json");
+  scenario::Scenario scenario = scenario::load_scenario(KRUG_EXAMPLES_DIR "/verification/slab_impact.json");
   const contact::ReactionMethod method = GENERATE(contact::ReactionMethod::gauss_seidel, contact::ReactionMethod::summation);
   scenario.setup.contact.controls.method = method;
   Simulation sim(scenario.setup);

@@ -40,7 +40,7 @@ struct Probe {
 
 TEST_CASE("E4 Wilkins flyer plate: HEL precursor, plastic state, fronts and the elastic swing on release",
           "[E4][strength]") {
-  const io::Scenario scenario = load_example("flyer_plate.json");
+  const scenario::Scenario scenario = load_example("flyer_plate.json");
   Run run(scenario.setup);
   const double dx = plate_thickness / plate_zones;
   const double two_thirds_y = 2.0 * flyer::yield_stress / 3.0;

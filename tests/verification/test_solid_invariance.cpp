@@ -158,8 +158,8 @@ TEST_CASE("E7 a pre-stressed block under a prescribed rigid rotation keeps its i
 TEST_CASE("E7 Y -> infinity reproduces the elastic E1 slab impact exactly", "[E7][strength]") {
   // The same scenario twice: elastic strength, and Prandtl-Reuss with Y = 1e300 Pa. A trial deviator
   // inside the surface is returned unchanged, so the two runs must agree bit for bit.
-  io::Scenario elastic = load_example("slab_impact.json");
-  io::Scenario plastic = load_example("slab_impact.json");
+  scenario::Scenario elastic = load_example("slab_impact.json");
+  scenario::Scenario plastic = load_example("slab_impact.json");
   REQUIRE(std::holds_alternative<Elastic>(elastic.setup.materials.at(0).strength));
   const double shear = std::get<Elastic>(elastic.setup.materials.at(0).strength).shear_modulus;
   plastic.setup.materials.at(0).strength = PerfectlyPlastic{shear, 1e300};
@@ -180,8 +180,8 @@ TEST_CASE("E7 mu -> 0 and Y = 0 reproduce the hydro Sod run, and Y = 0 keeps the
   // mu = 0 cannot be written (a strength model needs mu > 0); mu = 1e-300 Pa is zero to every term it
   // enters (4 mu / (3 rho) against c^2 ~ 1, the stiffness hourglass ~ mu), and Y = 0 returns every
   // trial deviator to zero. Same time steps (the runs step together): identical to the hydro run.
-  const io::Scenario hydro = load_example("sod.json");
-  io::Scenario vanishing = load_example("sod.json");
+  const scenario::Scenario hydro = load_example("sod.json");
+  scenario::Scenario vanishing = load_example("sod.json");
   vanishing.setup.materials.at(0).strength = PerfectlyPlastic{1e-300, 0.0};
   Simulation a(hydro.setup), b(vanishing.setup);
   while (!a.finished()) step_together(a, b);
@@ -202,7 +202,7 @@ TEST_CASE("E7 mu -> 0 and Y = 0 reproduce the hydro Sod run, and Y = 0 keeps the
   // the L1 density error against the exact solution is at most sqrt(2) times the hydro run's (the
   // linear viscosity, c_l rho c, and so the width of the captured jumps grow at most by
   // sqrt(c^2 + 4 mu/(3 rho)) / c <= sqrt(2); measured +17 %).
-  io::Scenario stiff = load_example("sod.json");
+  scenario::Scenario stiff = load_example("sod.json");
   stiff.setup.materials.at(0).strength = PerfectlyPlastic{1.4, 0.0};
   const Run hydro_run = run_to_end(hydro);
   double largest_deviator = 0.0;

@@ -161,7 +161,7 @@ struct PlateVibration {
 inline PlateVibration run_plate(int nx, int ny, double amplitude, double end_time = 9.0e-5) {
   char factor[64];
   std::snprintf(factor, sizeof factor, "\"%.17g * 4.3369e-5", amplitude);
-  const io::Scenario scenario = load_example(
+  const scenario::Scenario scenario = load_example(
       "beryllium_plate.json",
       {{"\"x\": { \"from\": -0.03, \"to\": 0.03, \"zones\": 60 }",
         "\"x\": { \"from\": -0.03, \"to\": 0.03, \"zones\": " + std::to_string(nx) + " }"},
@@ -253,7 +253,7 @@ struct TaylorLevel {
 
 // The uniform family of taylor_bar.json's domain: 7.5 k x k zones (aspect 1.35, as 60 x 8). `adjust`
 // may change the scenario's controls before the run.
-inline TaylorLevel taylor_level(int radial, const std::function<void(io::Scenario&)>& adjust = {}) {
+inline TaylorLevel taylor_level(int radial, const std::function<void(scenario::Scenario&)>& adjust = {}) {
   const int axial = radial * 15 / 2;
   // Replace the graded default mesh by a uniform one of the same bar (the mesh is the only change).
   const std::string text = read_text(example_path("taylor_bar.json"));
@@ -264,7 +264,7 @@ inline TaylorLevel taylor_level(int radial, const std::function<void(io::Scenari
   const std::string uniform = R"("mesh": { "type": "rectangle", "z": { "from": 0.0, "to": 0.0324, "zones": )" +
                               std::to_string(axial) + R"( }, "r": { "from": 0.0, "to": 0.0032, "zones": )" +
                               std::to_string(radial) + " } },\n      ";
-  io::Scenario scenario = load_example("taylor_bar.json", {{text.substr(begin, end - begin), uniform}});
+  scenario::Scenario scenario = load_example("taylor_bar.json", {{text.substr(begin, end - begin), uniform}});
   if (adjust) adjust(scenario);
   Run run(scenario.setup);
   const Body& bar = run.simulation.bodies().front();

@@ -31,7 +31,7 @@ Fronts locate_fronts(const std::vector<StripZone>& strip) {
 }  // namespace
 
 TEST_CASE("E3 elastic-plastic piston: plateaux, fronts and the yield surface", "[E3][strength]") {
-  const io::Scenario scenario = load_example("piston.json");
+  const scenario::Scenario scenario = load_example("piston.json");
   Run run(scenario.setup);
   const double dx = strip_length / strip_zones;
   const double half_time = 0.5 * scenario.setup.controls.end_time;  // 75 us

@@ -33,7 +33,7 @@ double lowest_node(const Mesh& mesh, const Body& body) {
 }  // namespace
 
 TEST_CASE("E6 Taylor bar at 227 m/s: length and impact-face radius at 80 us", "[E6][strength][axisymmetric]") {
-  const io::Scenario scenario = load_example("taylor_bar.json");
+  const scenario::Scenario scenario = load_example("taylor_bar.json");
   Run run(scenario.setup);
   const TaylorMeasures m = advance_taylor(run);
   const Simulation& sim = run.simulation;
@@ -71,7 +71,7 @@ TEST_CASE("E6 Taylor bar at twice the speed (454 m/s) runs to the end or stops w
   // side nodes may roll onto the wall. Either the run reaches 80 us with a sound state, or it stops with a
   // NumericalFailure that names the body, the zone and the time. Anything else (another exception, a
   // crash, a NaN in the state) fails the test.
-  const io::Scenario scenario = load_example("taylor_bar_454.json");
+  const scenario::Scenario scenario = load_example("taylor_bar_454.json");
   Run run(scenario.setup);
   const Body& bar = run.simulation.bodies().front();
   const std::vector<Index> face = impact_face_nodes(run.simulation.mesh(), bar);

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "verification_support.hpp"
 
 using namespace krug;
@@ -27,7 +27,7 @@ TEST_CASE("stiffened gas: a piston in water drives the shock of the ideal-gas ju
           "[eos][stiffened_gas]") {
   // The initial energy in the scenario is gamma p_inf / ((gamma - 1) rho0): p0 = 0.
   REQUIRE(std::abs(776470.5882352941 - gamma_water * p_inf / ((gamma_water - 1.0) * rho0)) < 1e-6);
-  const io::Scenario scenario = load_example("water_piston.json");  // examples/verification/
+  const scenario::Scenario scenario = load_example("water_piston.json");  // examples/verification/
   Run run = run_to_end(scenario);
   INFO(run.failure);
   REQUIRE(run.completed());

@@ -85,7 +85,7 @@ TEST_CASE("Uniform collapse of a sphere on an RZ polar mesh: exact coasting moti
           "[uniform_collapse][axisymmetric]") {
   check_collapse("Uniform collapse, sphere (RZ polar, control volume)", 3,
                  run_to_end(load_example("uniform_collapse_spherical.json")));
-  io::Scenario scenario = load_example("uniform_collapse_spherical.json");
+  scenario::Scenario scenario = load_example("uniform_collapse_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
   check_collapse("Uniform collapse, sphere (RZ polar, area weighted)", 3, run_to_end(scenario));
 }
@@ -95,7 +95,7 @@ TEST_CASE("Uniform collapse of a sphere on an RZ polar mesh: exact coasting moti
 // scaling about the origin) stays exact with both on.
 TEST_CASE("Uniform collapse with subzonal pressures and heat conduction on: still exact", "[uniform_collapse][subzonal]") {
   for (const char* file : {"uniform_collapse_cylindrical.json", "uniform_collapse_spherical.json"}) {
-    io::Scenario scenario = load_example(file);
+    scenario::Scenario scenario = load_example(file);
     scenario.setup.controls.hourglass.subzonal_pressure = 1.0;
     scenario.setup.controls.viscosity.heat_conduction = 2.0;  // uniform e: nothing to conduct
     const bool spherical = std::string(file) == "uniform_collapse_spherical.json";

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "krug/core/error.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/krug.hpp"
 
 namespace krug::verification {
@@ -73,10 +73,10 @@ inline std::string substitute(std::string text, const std::vector<Substitution>&
 }
 
 // The example examples/verification/<file>, with the substitutions applied.
-inline io::Scenario load_example(const std::string& file, const std::vector<Substitution>& substitutions = {}) {
+inline scenario::Scenario load_example(const std::string& file, const std::vector<Substitution>& substitutions = {}) {
   const std::filesystem::path path = example_path(file);
-  if (substitutions.empty()) return io::load_scenario(path);
-  return io::parse_scenario(substitute(read_text(path), substitutions), path.string());
+  if (substitutions.empty()) return scenario::load_scenario(path);
+  return scenario::parse_scenario(substitute(read_text(path), substitutions), path.string());
 }
 
 // "zones": n for the given n, as written in the example files (one space after the colon).
@@ -120,7 +120,7 @@ inline void advance(Run& run, const std::function<void(const Simulation&)>& obse
   run.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-inline Run run_to_end(const io::Scenario& scenario, const std::function<void(const Simulation&)>& observe = {}) {
+inline Run run_to_end(const scenario::Scenario& scenario, const std::function<void(const Simulation&)>& observe = {}) {
   Run run(scenario.setup);
   advance(run, observe);
   return run;

@@ -12,7 +12,7 @@
 // eps_f = [D1 + D2 exp(D3 sigma*)] [1 + D4 ln(rate*)] [1 + D5 T*], sigma* = mean stress / von Mises
 // stress) are carried in the block "damage" for the sets where they are published. They enter a
 // scenario only through a fracture block that asks for the Johnson-Cook failure law (the reader fills
-// the block's missing d1..d5 from the set: src/io/scenario.cpp, expand_material), and are listed by
+// the block's missing d1..d5 from the set: src/scenario/scenario.cpp, expand_material), and are listed by
 // `krug materials NAME`.
 //
 // Sources, abbreviated in the strings below (full references in docs/materials.md):

@@ -13,18 +13,17 @@
 #include <string_view>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
-#include "krug/io/text_file.hpp"
+#include "krug/scenario/scenario.hpp"
+#include "krug/output/text_file.hpp"
 #include "krug/run/observer.hpp"
 #include "krug/run/state.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::output {
 
-using io::OutputSettings;
-using io::Scenario;
-using io::VtkEncoding;
-using io::write_text_atomically;
+using scenario::OutputSettings;
+using scenario::Scenario;
+using scenario::VtkEncoding;
 using run::RunProgress;
 using run::RunResult;
 using run::RunStatus;

@@ -4,7 +4,7 @@
 // output.checkpoint_interval and always when interrupted; a run continues from one.
 #include <filesystem>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/output/outputs.hpp"
 #include "krug/run/run.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/run/penetration.hpp"
 #include "krug/solver/simulation.hpp"
 
@@ -35,7 +35,7 @@ class EventWatch {
   std::vector<FractureCounts> seen_;  // per body: the counts already reported as non-zero
 };
 
-std::vector<std::string> start_up_lines(const io::Scenario& scenario, const Simulation& simulation);
+std::vector<std::string> start_up_lines(const scenario::Scenario& scenario, const Simulation& simulation);
 
 // "plate zone 123" for a zone of the mesh, or "no zone".
 std::string describe_zone(const Simulation& simulation, Index zone);

@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/solver/simulation.hpp"
 
 namespace krug::run {
 
 // Which body is the projectile and which are its targets: read from the scenario's "penetration" block.
-using io::PenetrationSetup;
+using scenario::PenetrationSetup;
 
 // The geometry of a moment: where the projectile's piece and the targets' main pieces are.
 struct PenetrationMoment {

@@ -7,14 +7,14 @@
 #include <atomic>
 #include <functional>
 
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/run/events.hpp"
 #include "krug/run/observer.hpp"
 #include "krug/run/state.hpp"
 
 namespace krug::run {
 
-using io::Scenario;
+using scenario::Scenario;
 
 struct RunOptions {
   // Called after each cycle with the wall time so far; return false to stop (status "failed").

@@ -18,12 +18,12 @@
 #include <utility>
 
 #include "krug/core/vec2.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 #include "krug/run/state.hpp"
 
 namespace krug::run {
 
-using io::StopRule;
+using scenario::StopRule;
 
 class StopMonitor {
  public:

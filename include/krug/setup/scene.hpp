@@ -35,7 +35,7 @@ using PointFunction = std::function<double(double first, double second)>;
 
 // The mesh kinds, each a generator's parameters with its scenario `name` (`mesh.type`). The registry is
 // the variant MeshShape: the scenario reader offers its names and reads the chosen kind's keys (an
-// overload of read_mesh_kind in src/io/scenario_bodies.cpp), and build_simulation generates it and names
+// overload of read_mesh_kind in src/scenario/scenario_bodies.cpp), and build_simulation generates it and names
 // its sides (overloads of generate_kind and kind_sides in src/setup/build.cpp). A kind without one of
 // them stops the build. A new kind is its struct here, its line in MeshShape, those three overloads, its
 // branch in docs/scenario.schema.json and its row in docs/scenario-format.md.

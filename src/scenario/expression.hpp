@@ -11,7 +11,7 @@
 
 #include "json_reader.hpp"
 
-namespace krug::io {
+namespace krug::scenario {
 
 class Expression {
  public:
@@ -52,4 +52,4 @@ class ScalarField {
   std::shared_ptr<Expression> expression_;
 };
 
-}  // namespace krug::io
+}  // namespace krug::scenario

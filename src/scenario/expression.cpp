@@ -10,7 +10,7 @@
 
 #include "krug/core/error.hpp"
 
-namespace krug::io {
+namespace krug::scenario {
 
 struct Expression::Impl {
   mu::Parser parser;
@@ -131,4 +131,4 @@ double ScalarField::at(double first, double second) const {
   return expression_ ? (*expression_)(first, second) : constant_;
 }
 
-}  // namespace krug::io
+}  // namespace krug::scenario

@@ -9,7 +9,7 @@
 #include "expression.hpp"
 #include "krug/core/error.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 namespace {
 
@@ -252,4 +252,4 @@ setup::InitialState read_initial(JsonObject spec, GeometryKind geometry) {
   return initial;
 }
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "json_reader.hpp"
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 // The index of the body a scenario names at `path` (`key` of `spec`); an unknown name lists the bodies
 // and suggests the nearest.
@@ -31,4 +31,4 @@ GaugeSettings read_gauges(JsonObject spec, const std::vector<Body>& bodies, Geom
 // one; errors name gauges.tracers[i].
 void check_gauges(const GaugeSettings& gauges, const SimulationSetup& setup);
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail

@@ -20,7 +20,7 @@
 #include "krug/fracture/failure_law.hpp"
 #include "krug/material/library.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 namespace {
 
@@ -314,4 +314,4 @@ Material read_material(const std::string& name, JsonObject spec, fracture::Failu
   return m;
 }
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail

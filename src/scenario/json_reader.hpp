@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace krug::io {
+namespace krug::scenario {
 
 using Json = nlohmann::json;
 
@@ -134,4 +134,4 @@ class JsonObject {
   mutable std::set<std::string, std::less<>> used_;
 };
 
-}  // namespace krug::io
+}  // namespace krug::scenario

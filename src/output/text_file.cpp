@@ -1,4 +1,4 @@
-#include "krug/io/text_file.hpp"
+#include "krug/output/text_file.hpp"
 
 #include <fstream>
 
@@ -6,7 +6,7 @@
 
 #include "krug/core/error.hpp"
 
-namespace krug::io {
+namespace krug::output {
 
 void write_text_atomically(const std::filesystem::path& file, const std::string& text) {
   const std::filesystem::path temporary = file.string() + ".partial";
@@ -20,4 +20,14 @@ void write_text_atomically(const std::filesystem::path& file, const std::string&
   std::filesystem::rename(temporary, file);
 }
 
-}  // namespace krug::io
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c == '\n' ? ' ' : c;
+  }
+  return quoted + "\"";
+}
+
+}  // namespace krug::output

@@ -9,7 +9,7 @@
 
 #include "krug/core/error.hpp"
 
-namespace krug::io {
+namespace krug::scenario {
 
 std::string Range::describe() const {
   const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
@@ -384,4 +384,4 @@ void JsonObject::finish(const std::vector<std::string>& also_known) const {
   }
 }
 
-}  // namespace krug::io
+}  // namespace krug::scenario

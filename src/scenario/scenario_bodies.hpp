@@ -11,7 +11,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/setup/scene.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 struct AxisNames {
   std::string first, second;
@@ -26,4 +26,4 @@ setup::MeshDescription read_mesh(JsonObject spec, GeometryKind geometry, bool al
 std::vector<setup::SideBoundary> read_boundary(JsonObject spec, const setup::MeshDescription& mesh, GeometryKind geometry);
 setup::InitialState read_initial(JsonObject spec, GeometryKind geometry);
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail

@@ -1,29 +1,14 @@
-// Parameter sweeps: variants of a scenario by JSON path, and the table of their results.
-#include "krug/io/sweep.hpp"
-
-#include <algorithm>
-#include <fstream>
-#include <sstream>
+// Scenario edits by JSON path, a variant read from them, and the variants of a sweep, in memory
+// (edit.hpp). Writing the variants and their table is output's (krug/output/sweep_files.hpp).
+#include "krug/scenario/edit.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "krug/core/error.hpp"
 #include "json_reader.hpp"
-#include "krug/io/scenario.hpp"
-#include "krug/io/text_file.hpp"
+#include "krug/core/error.hpp"
 
-namespace krug::io {
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
-}
+namespace krug::scenario {
 
 namespace {
 
@@ -133,13 +118,6 @@ std::string file_safe(const std::string& text) {
   return out.substr(0, 40);
 }
 
-std::string csv_number(const Json& value) {
-  if (value.is_number_integer()) return value.dump();
-  if (value.is_number()) return fmt::format("{:.9g}", value.get<double>());
-  if (value.is_null()) return "";
-  return csv_field(value.is_string() ? value.get<std::string>() : value.dump());
-}
-
 // An edit's errors, with "--set " before them for the sweep's messages.
 template <typename F>
 auto as_set(F&& f) {
@@ -156,6 +134,10 @@ std::string edit_scenario(const std::string& text, const std::vector<ScenarioEdi
   OrderedJson document = parse_document<OrderedJson>(text, origin);
   for (const ScenarioEdit& edit : edits) set_path(document, edit.path, value_of(edit.value, edit.path));
   return document.dump(2) + "\n";
+}
+
+Scenario scenario_variant(const std::string& text, const std::vector<ScenarioEdit>& edits, const std::string& origin) {
+  return parse_scenario(edit_scenario(text, edits, origin), origin);
 }
 
 SweepParameter parse_sweep_set(const std::string& argument) {
@@ -199,9 +181,8 @@ SweepParameter parse_sweep_set(const std::string& argument) {
   return p;
 }
 
-std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_file,
-                                        const std::vector<SweepParameter>& parameters,
-                                        const std::filesystem::path& directory) {
+SweepPlan plan_sweep(const std::filesystem::path& scenario_file, const std::vector<SweepParameter>& parameters,
+                     const std::filesystem::path& directory) {
   OrderedJson base = parse_document<OrderedJson>(read_text_file(scenario_file, "scenario file"), scenario_file.string());
   if (parameters.empty()) throw InputError("krug sweep: give at least one --set PATH=VALUE1,VALUE2,...");
   std::size_t count = 1;
@@ -255,123 +236,7 @@ std::vector<SweepVariant> prepare_sweep(const std::filesystem::path& scenario_fi
     variants.push_back(variant);
     texts.push_back(std::move(text));
   }
-  for (std::size_t v = 0; v < variants.size(); ++v) {
-    std::error_code error;
-    std::filesystem::create_directories(variants[v].directory, error);
-    if (error) throw InputError(fmt::format("{}: cannot create: {}", variants[v].directory.string(), error.message()));
-    write_text_atomically(variants[v].scenario, texts[v]);
-  }
-  return variants;
+  return {std::move(variants), std::move(texts)};
 }
 
-void write_sweep_table(const std::filesystem::path& directory, const std::vector<SweepParameter>& parameters,
-                       const std::vector<SweepVariant>& variants) {
-  std::vector<Json> summaries;
-  bool penetration = false;
-  std::vector<std::string> bodies;  // in order of first appearance
-  std::vector<std::string> axes = {"x", "y"};
-  for (const SweepVariant& variant : variants) {
-    Json summary;
-    std::ifstream in(variant.directory / "summary.json");
-    if (in) {
-      try {
-        in >> summary;
-      } catch (const nlohmann::json::exception&) {
-        summary = Json();
-      }
-    }
-    if (summary.is_object()) {
-      if (summary.contains("axes") && summary["axes"].is_array() && summary["axes"].size() == 2) {
-        axes = {summary["axes"][0].get<std::string>(), summary["axes"][1].get<std::string>()};
-      }
-      if (summary.contains("bodies") && summary["bodies"].is_object()) {
-        for (const auto& [name, _] : summary["bodies"].items()) {
-          if (std::find(bodies.begin(), bodies.end(), name) == bodies.end()) bodies.push_back(name);
-        }
-      }
-    }
-    summaries.push_back(summary);
-    penetration = penetration || (summary.is_object() && summary.contains("penetration"));
-  }
-  // Penetration columns: the summaries' "penetration" block (docs/outputs.md), when any variant has one.
-  const std::vector<std::vector<const char*>> penetration_columns = {
-      {"perforated"}, {"perforation_time"}, {"residual_velocity"}, {"residual_mass"}, {"mass_lost"},
-      {"eroded_mass"}, {"plug", "mass"}, {"plug", "velocity"}, {"target_energy_absorbed"}, {"final"},
-      {"piece_velocity_loss"}, {"whole", "velocity"}, {"whole", "velocity_loss"}, {"whole", "free_element_mass"},
-      {"whole", "backward_mass"}};
-  std::vector<std::string> header = {"variant"};
-  auto column_name = [](const std::vector<const char*>& path) {
-    std::string name = "penetration";
-    for (const char* key : path) name += std::string("_") + key;
-    return name;
-  };
-  for (const SweepParameter& p : parameters) header.push_back(p.path);
-  for (const char* column : {"status", "stopped_by", "time", "cycles", "wall_seconds", "energy_drift", "mass_error",
-                             "particles"}) {
-    header.emplace_back(column);
-  }
-  for (const std::string& b : bodies) {
-    for (const std::string& column : {"v" + axes[0], "v" + axes[1], std::string("mass"), std::string("zones")}) {
-      header.push_back(fmt::format("{}_{}", b, column));
-    }
-  }
-  if (penetration) {
-    for (const auto& path : penetration_columns) header.push_back(column_name(path));
-  }
-  header.emplace_back("message");
-  std::string table;
-  auto add_row = [&](const std::vector<std::string>& cells) {
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (c > 0) table.push_back(',');
-      table.append(cells[c]);
-    }
-    table.push_back('\n');
-  };
-  std::vector<std::string> header_cells;
-  for (const std::string& h : header) header_cells.push_back(csv_field(h));
-  add_row(header_cells);
-  for (std::size_t v = 0; v < variants.size(); ++v) {
-    const Json& s = summaries[v];
-    std::vector<std::string> cells = {csv_field(variants[v].name)};
-    for (const std::string& value : variants[v].values) {
-      const Json parsed = Json::parse(value);
-      cells.push_back(parsed.is_string() ? csv_field(parsed.get<std::string>()) : csv_field(value));
-    }
-    auto get = [&](std::initializer_list<const char*> path) -> Json {
-      const Json* at = &s;
-      for (const char* key : path) {
-        if (!at->is_object() || !at->contains(key)) return Json();
-        at = &(*at)[key];
-      }
-      return *at;
-    };
-    cells.push_back(s.is_object() ? csv_number(get({"status"})) : std::string("not run"));
-    cells.push_back(csv_number(get({"stopped_by"})));
-    cells.push_back(csv_number(get({"time"})));
-    cells.push_back(csv_number(get({"cycles"})));
-    cells.push_back(csv_number(get({"wall_seconds"})));
-    cells.push_back(csv_number(get({"ledger", "energy", "relative_drift"})));
-    cells.push_back(csv_number(get({"ledger", "mass", "relative_error"})));
-    cells.push_back(csv_number(get({"particles", "count"})));
-    for (const std::string& b : bodies) {
-      const Json body = get({"bodies", b.c_str()});
-      const Json velocity = body.is_object() && body.contains("velocity") ? body["velocity"] : Json::array({nullptr, nullptr});
-      cells.push_back(csv_number(velocity[0]));
-      cells.push_back(csv_number(velocity[1]));
-      cells.push_back(csv_number(body.is_object() && body.contains("mass") ? body["mass"] : Json()));
-      cells.push_back(csv_number(body.is_object() && body.contains("zones") ? body["zones"] : Json()));
-    }
-    if (penetration) {
-      for (const auto& path : penetration_columns) {
-        const Json* at = s.is_object() && s.contains("penetration") ? &s["penetration"] : nullptr;
-        for (const char* key : path) at = at && at->is_object() && at->contains(key) ? &(*at)[key] : nullptr;
-        cells.push_back(at ? csv_number(*at) : std::string());
-      }
-    }
-    cells.push_back(csv_number(get({"message"})));
-    add_row(cells);
-  }
-  write_text_atomically(directory / "sweep.csv", table);
-}
-
-}  // namespace krug::io
+}  // namespace krug::scenario

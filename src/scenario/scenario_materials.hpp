@@ -11,7 +11,7 @@
 #include "krug/fracture/failure_law.hpp"
 #include "krug/material/material.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 // The plausibility checks a physicist would make of a solid's data and of a scenario's speeds and
 // angles; each catches a unit slip (GPa for Pa, g/cm^3 for kg/m^3, percent, radians, km/s) that would
@@ -35,4 +35,4 @@ Json expand_material(const Json& given, const std::string& path);
 Material read_material(const std::string& name, JsonObject spec, fracture::FailureLaw& failure,
                        fracture::ErosionLimits& erosion, const Allowances& allow);
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail

@@ -13,7 +13,7 @@
 #include "krug/solver/gauges.hpp"
 #include "krug/solver/simulation.hpp"
 
-namespace krug::io {
+namespace krug::scenario {
 
 // PNG pictures of the bodies and particles coloured by one field (written by the app when it is built
 // with Cairo; see docs/outputs.md).
@@ -93,4 +93,4 @@ struct ReadLimits {
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin, const ReadLimits& limits = {});
 
-}  // namespace krug::io
+}  // namespace krug::scenario

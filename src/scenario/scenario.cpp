@@ -1,5 +1,5 @@
 // Scenario JSON -> SimulationSetup. The only place (with outputs) that knows the file format.
-#include "krug/io/scenario.hpp"
+#include "krug/scenario/scenario.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +25,7 @@
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/nosed_cylinder.hpp"
 
-namespace krug::io {
+namespace krug::scenario {
 
 namespace {
 
@@ -327,4 +327,4 @@ Scenario load_scenario(const std::filesystem::path& file) {
   return scenario;
 }
 
-}  // namespace krug::io
+}  // namespace krug::scenario

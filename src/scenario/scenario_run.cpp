@@ -9,7 +9,7 @@
 
 #include "krug/core/error.hpp"
 
-namespace krug::io::detail {
+namespace krug::scenario::detail {
 
 Index body_index(JsonObject& spec, std::string_view key, const Json& name, const std::vector<Body>& bodies,
                  const std::string& path) {
@@ -275,4 +275,4 @@ void check_gauges(const GaugeSettings& gauges, const SimulationSetup& setup) {
   }
 }
 
-}  // namespace krug::io::detail
+}  // namespace krug::scenario::detail
