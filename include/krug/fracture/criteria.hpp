@@ -39,7 +39,8 @@ enum class Criterion : std::uint8_t {
   compressive_stress,
   shear_strain,
   energy,
-  johnson_cook  // Johnson-Cook damage D >= 1 (johnson_cook.hpp)
+  johnson_cook,     // Johnson-Cook damage D >= 1 (johnson_cook.hpp)
+  cockcroft_latham  // Cockcroft-Latham plastic work of tension W >= W_c (cockcroft_latham.hpp)
 };
 
 constexpr std::string_view criterion_name(Criterion c) {
@@ -50,6 +51,7 @@ constexpr std::string_view criterion_name(Criterion c) {
     case Criterion::shear_strain: return "shear_strain";
     case Criterion::energy: return "internal_energy";
     case Criterion::johnson_cook: return "johnson_cook";
+    case Criterion::cockcroft_latham: return "cockcroft_latham";
     case Criterion::none: break;
   }
   return "none";

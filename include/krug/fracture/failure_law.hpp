@@ -14,12 +14,13 @@
 // only the inputs the law names; a failed zone takes the same damaged state whatever the law.
 #include <variant>
 
+#include "krug/fracture/cockcroft_latham.hpp"
 #include "krug/fracture/criteria.hpp"
 #include "krug/fracture/johnson_cook.hpp"
 
 namespace krug::fracture {
 
-using FailureLaw = std::variant<FractureLimits, JohnsonCookDamage>;
+using FailureLaw = std::variant<FractureLimits, JohnsonCookDamage, CockcroftLatham>;
 
 // The law is on (criteria (1) with at least one limit; every other law).
 inline bool enabled(const FailureLaw& law) {
