@@ -36,6 +36,12 @@ double von_mises(const ZoneFields& z, Index i) {
   return std::sqrt(1.5 * (sxx * sxx + syy * syy + szz * szz + 2.0 * sxy * sxy));
 }
 
+// eta = -p / sigma_vm (p the equation of state's pressure, compression positive); 0 where sigma_vm = 0.
+double triaxiality(const ZoneFields& z, Index i) {
+  const double vm = von_mises(z, i);
+  return vm > 0.0 ? -z.pressure[i] / vm : 0.0;
+}
+
 using L = OutputLocation;
 using S = const Simulation&;
 
@@ -60,6 +66,7 @@ const OutputField fields[] = {
     {"deviatoric_stress_zz", "deviatoric_stress_tt", 1, L::zone,
      [](S s, Items i) { return each<double>(i, [&](Index z) { return zones(s).deviator_zz[z]; }); }},
     {"von_mises_stress", "", 1, L::zone, [](S s, Items i) { return each<double>(i, [&](Index z) { return von_mises(zones(s), z); }); }},
+    {"stress_triaxiality", "", 1, L::zone, [](S s, Items i) { return each<double>(i, [&](Index z) { return triaxiality(zones(s), z); }); }},
     {"equivalent_plastic_strain", "", 1, L::zone,
      [](S s, Items i) { return each<double>(i, [&](Index z) { return zones(s).plastic_strain[z]; }); }},
     {"damaged", "", 1, L::zone, [](S s, Items i) { return each<std::uint8_t>(i, [&](Index z) { return zones(s).damaged[z]; }); }},
