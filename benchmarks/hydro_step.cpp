@@ -73,11 +73,11 @@ const Simulation& checkpoint(const Case& c) {
 
 // Fraction of the active zones whose plastic strain grew between two states of the same problem.
 double yielding_fraction(const Simulation& before, const Simulation& after) {
-  const krug::ZoneFields& a = before.mesh().zones;
-  const krug::ZoneFields& b = after.mesh().zones;
+  const krug::StrengthZoneFields& a = before.zone_state().strength;
+  const krug::StrengthZoneFields& b = after.zone_state().strength;
   long active = 0, yielding = 0;
-  for (krug::Index z = 0; z < a.size(); ++z) {
-    if (!b.active[z]) continue;
+  for (krug::Index z = 0; z < before.mesh().zones.size(); ++z) {
+    if (!after.mesh().zones.active[z]) continue;
     ++active;
     if (b.plastic_strain[z] > a.plastic_strain[z]) ++yielding;
   }

@@ -42,14 +42,17 @@ std::vector<double> state_values(const Simulation& sim) {
   std::vector<double> out;
   const krug::NodeFields& n = sim.mesh().nodes;
   const krug::ZoneFields& z = sim.mesh().zones;
+  const krug::HydroZoneFields& h = sim.zone_state().hydro;
+  const krug::StrengthZoneFields& s = sim.zone_state().strength;
+  const krug::HourglassZoneFields& q = sim.zone_state().hourglass;
   for (const auto* f : {&n.x, &n.y, &n.u, &n.v, &n.mass}) append(out, *f);
-  for (const auto* f : {&z.density, &z.specific_energy, &z.pressure, &z.sound_speed, &z.volume, &z.deviator_xx,
-                        &z.deviator_yy, &z.deviator_xy, &z.deviator_zz, &z.plastic_strain, &z.hourglass_x,
-                        &z.hourglass_y, &z.corner_force, &z.viscous_speed}) {
+  for (const auto* f : {&z.density, &z.specific_energy, &h.pressure, &h.sound_speed, &z.volume, &s.deviator_xx,
+                        &s.deviator_yy, &s.deviator_xy, &s.deviator_zz, &s.plastic_strain, &q.hourglass_x,
+                        &q.hourglass_y, &h.corner_force, &h.viscous_speed}) {
     append(out, *f);
   }
   append_integers(out, z.active);
-  append_integers(out, z.damaged);
+  append_integers(out, sim.zone_state().fracture.damaged);
   const krug::Particles& p = sim.particles();
   for (const auto* f : {&p.x, &p.y, &p.u, &p.v, &p.mass}) append(out, *f);
   const krug::EnergyLedger& e = sim.ledger().energy;
@@ -106,7 +109,7 @@ int main(int argc, char** argv) {
       for (long k = 0; k < problem.cycles && !sim.finished(); ++k) sim.step();
       const std::vector<double> values = state_values(sim);
       long damaged = 0;
-      for (const std::uint8_t d : sim.mesh().zones.damaged) damaged += d;
+      for (const std::uint8_t d : sim.zone_state().fracture.damaged) damaged += d;
       std::printf("%-24s cycle %6ld  damaged zones %5ld  particles %5ld  %016llx\n", problem.name.c_str(),
                   sim.cycle(), damaged, static_cast<long>(sim.particles().size()),
                   static_cast<unsigned long long>(fnv1a(values)));

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "pictures.hpp"
 
 namespace krug::app {
@@ -55,13 +56,13 @@ const char* unit_of(const std::string& field) {
   return "";
 }
 
-double zone_value(const Mesh& mesh, Index z, const std::string& field) {
+double zone_value(const Mesh& mesh, const ZoneState& state, Index z, const std::string& field) {
   if (field == "density") return mesh.zones.density[z];
-  if (field == "pressure") return mesh.zones.pressure[z];
+  if (field == "pressure") return state.hydro.pressure[z];
   if (field == "specific_internal_energy") return mesh.zones.specific_energy[z];
-  if (field == "equivalent_plastic_strain") return mesh.zones.plastic_strain[z];
-  if (field == "damaged") return mesh.zones.damaged[z];
-  if (field == "sound_speed") return mesh.zones.sound_speed[z];
+  if (field == "equivalent_plastic_strain") return state.strength.plastic_strain[z];
+  if (field == "damaged") return state.fracture.damaged[z];
+  if (field == "sound_speed") return state.hydro.sound_speed[z];
   if (field == "body") return mesh.zones.body[z];
   double speed = 0.0;  // "speed": mean of the corner speeds
   for (Index n : mesh.zones.corners[z]) speed += 0.25 * std::hypot(mesh.nodes.u[n], mesh.nodes.v[n]);
@@ -153,7 +154,7 @@ bool write_picture(const Simulation& simulation, const scenario::PictureSettings
     if (!mesh.zones.active[z]) continue;
     ++active;
     for (Index n : mesh.zones.corners[z]) include(mesh.nodes.x[n], mesh.nodes.y[n], 0.0);
-    const double v = zone_value(mesh, z, field);
+    const double v = zone_value(mesh, simulation.zone_state(), z, field);
     if (std::isfinite(v)) {
       low = std::min(low, v);
       high = std::max(high, v);
@@ -251,7 +252,7 @@ bool write_picture(const Simulation& simulation, const scenario::PictureSettings
       cairo_move_to(cr, px(mesh.nodes.x[c[0]]), py(sign * mesh.nodes.y[c[0]]));
       for (int k = 1; k < 4; ++k) cairo_line_to(cr, px(mesh.nodes.x[c[k]]), py(sign * mesh.nodes.y[c[k]]));
       cairo_close_path(cr);
-      set_colour(zone_value(mesh, z, field));
+      set_colour(zone_value(mesh, simulation.zone_state(), z, field));
       if (edges) {
         cairo_fill_preserve(cr);
         cairo_set_source_rgba(cr, 0, 0, 0, 0.3);

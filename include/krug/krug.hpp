@@ -10,6 +10,7 @@
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/quad.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/gauges.hpp"
 #include "krug/solver/ledger.hpp"

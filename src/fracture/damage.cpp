@@ -17,13 +17,14 @@ Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric) {
   return principal_stretches(f11, f12, f21, f22, hoop);
 }
 
-void damage_zone(ZoneFields& zones, Index z, Criterion why, double now) {
-  zones.damaged[z] = 1;
-  zones.damage_time[z] = now;
-  zones.damage_criterion[z] = static_cast<std::uint8_t>(why);
-  zones.deviator_xx[z] = zones.deviator_yy[z] = zones.deviator_xy[z] = zones.deviator_zz[z] = 0.0;
-  zones.pressure[z] = std::max(zones.pressure[z], 0.0);
-  zones.hourglass_x[z] = zones.hourglass_y[z] = 0.0;
+void damage_zone(ZoneState& state, Index z, Criterion why, double now) {
+  state.fracture.damaged[z] = 1;
+  state.fracture.damage_time[z] = now;
+  state.fracture.damage_criterion[z] = static_cast<std::uint8_t>(why);
+  StrengthZoneFields& strength = state.strength;
+  strength.deviator_xx[z] = strength.deviator_yy[z] = strength.deviator_xy[z] = strength.deviator_zz[z] = 0.0;
+  state.hydro.pressure[z] = std::max(state.hydro.pressure[z], 0.0);
+  state.hourglass.hourglass_x[z] = state.hourglass.hourglass_y[z] = 0.0;
 }
 
 }  // namespace krug::fracture

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 
 namespace krug {
 
@@ -19,6 +20,12 @@ void ZoneFields::resize(Index n) {
     field.resize(per * static_cast<std::size_t>(n), fill);
   });
   neighbours_built = false;
+}
+
+void ZoneState::resize(Index n) {
+  for_each_zone_state_field(*this, [n](std::string_view, auto& field, std::size_t per, auto fill) {
+    field.resize(per * static_cast<std::size_t>(n), fill);
+  });
 }
 
 namespace {

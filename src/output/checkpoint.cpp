@@ -26,14 +26,15 @@ constexpr std::uint32_t byte_order_mark = 0x01020304;
 // Every field of the state is written by name below. When a field is added to one of these
 // structures, these sizes change and the build stops here: add the field to write_state() and
 // read_state() (and raise checkpoint_version), or a restart would silently lose it.
-// (NodeFields and ZoneFields are written through their registry, mesh.hpp.)
+// (NodeFields and ZoneFields are written through their registry, mesh.hpp, and the ZoneState's groups
+// through theirs, zone_state.hpp.)
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(Particles) == 10 * 24,
               "Particles changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(std::vector<double>) != 24 ||
-                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(Particles) + sizeof(Ledger) + 6 * 24 + 9 * 8,
+                  sizeof(SimulationState) == sizeof(Mesh) + sizeof(ZoneState) + sizeof(Particles) + sizeof(Ledger) + 6 * 24 + 9 * 8,
               "SimulationState changed: update src/output/checkpoint.cpp");
 
 class Writer {
@@ -118,6 +119,12 @@ void mesh_fields(Io& io, MeshT& mesh) {
   for_each_zone_field(mesh.zones, each);
 }
 
+// The zone state's fields, group by group in the registries' order (zone_state.hpp).
+template <class Io, class State>
+void zone_state_fields(Io& io, State& state) {
+  for_each_zone_state_field(state, [&io](std::string_view, auto& field, std::size_t, auto) { io.vector(field); });
+}
+
 template <class Io, class ParticlesT>
 void particle_fields(Io& io, ParticlesT& p) {
   for_each_particle_field(p, [&](std::string_view, auto& field) { io.vector(field); });
@@ -155,6 +162,7 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   // State.
   mesh_fields(w, s.mesh);
   w.value(static_cast<std::uint8_t>(s.mesh.zones.neighbours_built));
+  zone_state_fields(w, s.zone_state);
   particle_fields(w, s.particles);
   w.value(s.ledger);
   w.vector(s.fracture_counts);
@@ -252,6 +260,7 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   SimulationState& s = c.state;
   mesh_fields(r, s.mesh);
   s.mesh.zones.neighbours_built = r.value<std::uint8_t>() != 0;
+  zone_state_fields(r, s.zone_state);
   particle_fields(r, s.particles);
   s.ledger = r.value<Ledger>();
   r.vector(s.fracture_counts);
@@ -320,9 +329,11 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   for_each_node_field(s.mesh.nodes, [&](std::string_view field_name, const auto& field, std::size_t per, auto) {
     if (field.size() != nodes * per) r.corrupt(fmt::format("node field {} has {} entries for {} nodes", field_name, field.size(), nodes));
   });
-  for_each_zone_field(s.mesh.zones, [&](std::string_view field_name, const auto& field, std::size_t per, auto) {
+  const auto zone_size = [&](std::string_view field_name, const auto& field, std::size_t per, auto) {
     if (field.size() != zones * per) r.corrupt(fmt::format("zone field {} has {} entries for {} zones", field_name, field.size(), zones));
-  });
+  };
+  for_each_zone_field(s.mesh.zones, zone_size);
+  for_each_zone_state_field(s.zone_state, zone_size);
   if (!s.zones_per_node.empty() && s.zones_per_node.size() != nodes) {
     r.corrupt("the zone count per node has the wrong length");  // empty without fracture
   }

@@ -51,9 +51,9 @@ bool face_is_free(const ZoneFields& zones, Index zone, int edge, const std::vect
 
 }  // namespace
 
-void evaluate_failure_laws(Mesh& mesh, const std::vector<Body>& bodies, const std::vector<Material>& materials,
-                           const std::vector<fracture::FailureLaw>& laws, GeometryKind geometry, double now, double dt,
-                           std::vector<FractureCounts>& counts) {
+void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
+                           const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
+                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts) {
   const std::vector<double>& energy = mesh.zones.specific_energy;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!fracture::enabled(laws[b])) continue;
@@ -64,33 +64,33 @@ void evaluate_failure_laws(Mesh& mesh, const std::vector<Body>& bodies, const st
         [&](const auto& law, const auto& strength) {
           using S = std::decay_t<decltype(strength)>;
           if constexpr (std::is_same_v<S, JohnsonCook>) {
-            return fracture::damage_zones(mesh, body.zone_begin, body.zone_end, law, geometry, now, dt,
+            return fracture::damage_zones(mesh, state, body.zone_begin, body.zone_end, law, geometry, now, dt,
                                           [&](Index z) { return strength.temperature_from_energy(energy[z]); });
           } else {
-            return fracture::damage_zones(mesh, body.zone_begin, body.zone_end, law, geometry, now, dt);
+            return fracture::damage_zones(mesh, state, body.zone_begin, body.zone_end, law, geometry, now, dt);
           }
         },
         laws[b], material.strength);
   }
 }
 
-std::vector<Conversion> choose_conversions(const Mesh& mesh, const std::vector<Body>& bodies,
+std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& state, const std::vector<Body>& bodies,
                                            const std::vector<Material>& materials,
                                            const std::vector<fracture::FailureLaw>& laws,
                                            const FractureControls& fc, const std::vector<std::uint8_t>& held_x,
                                            const std::vector<std::uint8_t>& held_y) {
   const ZoneFields& zones = mesh.zones;
   bool any_damaged = false;
-  for (Index z = 0; z < zones.size() && !any_damaged; ++z) any_damaged = zones.active[z] && zones.damaged[z];
+  for (Index z = 0; z < zones.size() && !any_damaged; ++z) any_damaged = zones.active[z] && state.fracture.damaged[z];
   std::vector<Conversion> chosen;
   // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
   for (const Body& body : bodies) {
     const fracture::ErosionLimits erosion = body.erosion();
     if (!erosion.any()) continue;
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      if (!zones.active[z] || zones.damaged[z]) continue;
+      if (!zones.active[z] || state.fracture.damaged[z]) continue;
       const quad::Corners x = mesh.corner_positions(z);
-      if (erosion.strained(zones.plastic_strain[z]) ||
+      if (erosion.strained(state.strength.plastic_strain[z]) ||
           collapsed(erosion, x, zones.area[z], zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
         chosen.push_back({z, ConversionRule::erosion});
@@ -110,20 +110,22 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const std::vector<B
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       if (!fracture::enabled(laws[b])) continue;
       for (Index z = bodies[b].zone_begin; z < bodies[b].zone_end; ++z) {
-        if (zones.active[z] && zones.damaged[z]) smallest_damaged = std::min(smallest_damaged, zones.stable_time_step[z]);
+        if (zones.active[z] && state.fracture.damaged[z]) {
+          smallest_damaged = std::min(smallest_damaged, state.hydro.stable_time_step[z]);
+        }
       }
     }
     Index active = 0, below = 0;
     for (Index z = 0; z < zones.size(); ++z) {
       if (!zones.active[z]) continue;
       ++active;
-      below += ratio * zones.stable_time_step[z] <= smallest_damaged ? 1 : 0;
+      below += ratio * state.hydro.stable_time_step[z] <= smallest_damaged ? 1 : 0;
     }
     if (below <= active / 2) {
       std::vector<double> steps;
       steps.reserve(static_cast<std::size_t>(active));
       for (Index z = 0; z < zones.size(); ++z) {
-        if (zones.active[z]) steps.push_back(zones.stable_time_step[z]);
+        if (zones.active[z]) steps.push_back(state.hydro.stable_time_step[z]);
       }
       std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
       median_step = steps[steps.size() / 2];
@@ -137,7 +139,7 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const std::vector<B
     const double reference_density = materials[static_cast<std::size_t>(body.material)].reference_density;
     const double loosening_limit = fracture::loosening_limit(laws[b]);
     for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      if (!zones.active[z] || !zones.damaged[z]) continue;
+      if (!zones.active[z] || !state.fracture.damaged[z]) continue;
       const quad::Corners x = mesh.corner_positions(z);
       const double altitude = quad::smallest_altitude(x, zones.area[z]);
       const double chi = fracture::loosening(zones.density[z], reference_density);
@@ -149,7 +151,7 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const std::vector<B
         chosen.push_back({z, ConversionRule::surface});
       } else if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
                  has_inverted_corner(x, zones.corners[z]) ||
-                 zones.stable_time_step[z] < ratio * median_step) {
+                 state.hydro.stable_time_step[z] < ratio * median_step) {
         chosen.push_back({z, ConversionRule::interior});  // a documented deviation from the paper, counted
       }
     }

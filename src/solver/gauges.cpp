@@ -283,6 +283,7 @@ void GaugeSampler::sample(const Simulation& simulation, std::vector<double>& val
   const Mesh& mesh = simulation.mesh();
   const NodeFields& nodes = mesh.nodes;
   const ZoneFields& zones = mesh.zones;
+  const ZoneState& state = simulation.zone_state();
   for (std::size_t i = 0; i < tracers_.size(); ++i) {
     const TracerLocation& t = tracers_[i];
     const bool active = zones.active[t.zone] != 0;
@@ -294,9 +295,9 @@ void GaugeSampler::sample(const Simulation& simulation, std::vector<double>& val
       u += n[p] * nodes.velocity(c[p]);
     }
     const double nan = not_a_number;
-    const double pressure = active ? zones.pressure[t.zone] : nan;
-    const double sxx = zones.deviator_xx[t.zone], syy = zones.deviator_yy[t.zone];
-    const double sxy = zones.deviator_xy[t.zone], szz = zones.deviator_zz[t.zone];
+    const double pressure = active ? state.hydro.pressure[t.zone] : nan;
+    const double sxx = state.strength.deviator_xx[t.zone], syy = state.strength.deviator_yy[t.zone];
+    const double sxy = state.strength.deviator_xy[t.zone], szz = state.strength.deviator_zz[t.zone];
     for (const TracerQuantity q : settings_.tracers[i].quantities) {
       switch (q) {
         case TracerQuantity::position: values.insert(values.end(), {active ? x.x : nan, active ? x.y : nan}); break;
@@ -308,7 +309,7 @@ void GaugeSampler::sample(const Simulation& simulation, std::vector<double>& val
         case TracerQuantity::von_mises:
           values.push_back(active ? std::sqrt(1.5 * (sxx * sxx + syy * syy + szz * szz + 2.0 * sxy * sxy)) : nan);
           break;
-        case TracerQuantity::plastic_strain: values.push_back(active ? zones.plastic_strain[t.zone] : nan); break;
+        case TracerQuantity::plastic_strain: values.push_back(active ? state.strength.plastic_strain[t.zone] : nan); break;
         case TracerQuantity::density: values.push_back(active ? zones.density[t.zone] : nan); break;
         case TracerQuantity::specific_energy: values.push_back(active ? zones.specific_energy[t.zone] : nan); break;
         case TracerQuantity::temperature: {
@@ -318,7 +319,7 @@ void GaugeSampler::sample(const Simulation& simulation, std::vector<double>& val
           values.push_back(active && jc ? jc->temperature_from_energy(zones.specific_energy[t.zone]) : nan);
           break;
         }
-        case TracerQuantity::damage: values.push_back(active ? static_cast<double>(zones.damaged[t.zone]) : nan); break;
+        case TracerQuantity::damage: values.push_back(active ? static_cast<double>(state.fracture.damaged[t.zone]) : nan); break;
       }
     }
   }

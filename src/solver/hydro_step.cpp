@@ -22,12 +22,13 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
   return params;
 }
 
-ArtificialPower body_corner_forces(Mesh& mesh, const Body& body, GeometryKind geometry, const ZoneForceParams& params,
-                                   int threads, AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters) {
+ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
+                                   const ZoneForceParams& params, int threads, AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters) {
   std::vector<ArtificialPower> block_power;
   auto run = [&]<GeometryKind G, ViscosityModel V>() {
     block_power = block_results<ArtificialPower>(body.zone_begin, body.zone_end, threads, [&](Index first, Index last) {
-      return compute_corner_forces<G, V>(mesh, first, last, params, area_weighted, limiters);
+      return compute_corner_forces<G, V>(mesh, state.hydro, state.strength, state.hourglass, state.fracture, first, last,
+                                         params, area_weighted, limiters);
     });
   };
   auto run_geometry = [&]<GeometryKind G>() {
@@ -51,14 +52,19 @@ ArtificialPower body_corner_forces(Mesh& mesh, const Body& body, GeometryKind ge
   return power;
 }
 
-std::vector<ZoneUpdateResult> body_zone_update(Mesh& mesh, const Body& body, GeometryKind geometry,
+std::vector<ZoneUpdateResult> body_zone_update(Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
                                                const Material& material, const ZoneUpdateParams& params, int threads,
                                                const double* work_correction) {
+  HydroZoneFields& hydro = state.hydro;
+  StrengthZoneFields& stress = state.strength;
+  const FractureZoneFields& fracture = state.fracture;
   return std::visit([&](const auto& eos, const auto& strength) {
     return block_results<ZoneUpdateResult>(body.zone_begin, body.zone_end, threads, [&](Index first, Index last) {
       return geometry == GeometryKind::axisymmetric
-                 ? update_zones<GeometryKind::axisymmetric>(mesh, first, last, eos, strength, params, work_correction)
-                 : update_zones<GeometryKind::planar>(mesh, first, last, eos, strength, params, work_correction);
+                 ? update_zones<GeometryKind::axisymmetric>(mesh, hydro, stress, fracture, first, last, eos, strength,
+                                                            params, work_correction)
+                 : update_zones<GeometryKind::planar>(mesh, hydro, stress, fracture, first, last, eos, strength, params,
+                                                      work_correction);
     });
   }, material.eos, material.strength);
 }

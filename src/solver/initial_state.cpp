@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string_view>
 #include <variant>
 
 #include <fmt/format.h>
@@ -71,24 +72,37 @@ std::vector<Index> count_zones_per_node(const Mesh& mesh) {
   return count;
 }
 
-void evaluate_initial_eos(ZoneFields& zones, const std::vector<Body>& bodies, const std::vector<Material>& materials) {
+void evaluate_initial_eos(const ZoneFields& zones, HydroZoneFields& hydro, const std::vector<Body>& bodies,
+                          const std::vector<Material>& materials) {
   for (const Body& body : bodies) {
     const Material& material = materials.at(static_cast<std::size_t>(body.material));
     const double mu = material.shear_modulus();
     std::visit([&](const auto& eos) {
       for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-        evaluate_eos(eos, mu, zones, z);
+        evaluate_eos(eos, mu, zones, hydro, z);
         const double rho = zones.density[z], e = zones.specific_energy[z];
-        if (!std::isfinite(e) || !std::isfinite(zones.pressure[z]) || !std::isfinite(zones.sound_speed[z])) {
+        if (!std::isfinite(e) || !std::isfinite(hydro.pressure[z]) || !std::isfinite(hydro.sound_speed[z])) {
           throw InputError(fmt::format("body '{}': zone {} starts with a non-finite state (rho {}, e {}, p {})",
-                                       body.name, z - body.zone_begin, rho, e, zones.pressure[z]));
+                                       body.name, z - body.zone_begin, rho, e, hydro.pressure[z]));
         }
       }
     }, material.eos);
   }
 }
 
-StableStep first_stable_time_step(const Mesh& mesh, const std::vector<Body>& bodies,
+void initialise_zone_state(ZoneState& state, const ZoneFields& zones, const std::vector<Body>& bodies,
+                           const std::vector<Material>& materials) {
+  const auto count = static_cast<std::size_t>(zones.size());
+  if (state.size() == 0) state.resize(zones.size());
+  for_each_zone_state_field(state, [&](std::string_view name, const auto& field, std::size_t per, auto) {
+    if (field.size() != per * count) {
+      throw InputError(fmt::format("the initial zone field {} has {} entries for {} zones", name, field.size(), count));
+    }
+  });
+  evaluate_initial_eos(zones, state.hydro, bodies, materials);
+}
+
+StableStep first_stable_time_step(const Mesh& mesh, const HydroZoneFields& hydro, const std::vector<Body>& bodies,
                                   const std::vector<Material>& materials, const Controls& controls) {
   const NodeFields& nodes = mesh.nodes;
   const ZoneFields& zones = mesh.zones;
@@ -101,7 +115,7 @@ StableStep first_stable_time_step(const Mesh& mesh, const std::vector<Body>& bod
       const Vec2 mean = 0.25 * (nodes.velocity(n[0]) + nodes.velocity(n[1]) + nodes.velocity(n[2]) + nodes.velocity(n[3]));
       double spread = 0.0;
       for (int p = 0; p < 4; ++p) spread = std::max(spread, norm(nodes.velocity(n[p]) - mean));
-      const double speed = zones.sound_speed[z] + 2.0 * spread;
+      const double speed = hydro.sound_speed[z] + 2.0 * spread;
       if (speed <= 0.0) continue;
       const double dt = cfl * quad::stable_length(mesh.corner_positions(z), zones.area[z]) / speed;
       if (dt < stable.time_step) stable = {dt, z};

@@ -22,6 +22,7 @@ Simulation::Simulation(SimulationSetup setup)
                 std::move(setup.held_sides)),
       controls_(setup.controls) {
   state_.mesh = std::move(setup.mesh);
+  state_.zone_state = std::move(setup.zone_state);
   state_.fracture_counts.assign(bodies_.size(), FractureCounts{});
   state_.body_plastic_work.assign(bodies_.size(), 0.0);
   state_.body_viscous_work.assign(bodies_.size(), 0.0);
@@ -57,16 +58,16 @@ void Simulation::initialise() {
   if (fracture_enabled_) state_.zones_per_node = count_zones_per_node(state_.mesh);
   boundary_.initialise(nodes, geometry_);  // zero inverse masses where a condition holds (the axis in RZ among them)
 
-  evaluate_initial_eos(zones, bodies_, materials_);
+  initialise_zone_state(state_.zone_state, zones, bodies_, materials_);
   build_edge_continuations(state_.mesh);
   node_corners_ = node_corners(state_.mesh);
   share_edge_limiters();
   if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
-    area_weighted_work_.assign(zones.corner_force.size(), 0.0);  // its presence selects the form's per-step arrays
+    area_weighted_work_.assign(state_.zone_state.hydro.corner_force.size(), 0.0);  // present: the form's per-step arrays
   }
 
   // First step: u given at t^0 is u^{-1/2} with dt^{-1/2} = 0, so dt^0 = dt^{1/2} / 2.
-  const StableStep stable = first_stable_time_step(state_.mesh, bodies_, materials_, controls_);
+  const StableStep stable = first_stable_time_step(state_.mesh, state_.zone_state.hydro, bodies_, materials_, controls_);
   state_.controlling_zone = stable.zone;
   state_.stable_time_step = stable.time_step;
   double first = controls_.initial_time_step > 0.0 ? controls_.initial_time_step : stable.time_step;
@@ -128,6 +129,7 @@ SimulationState Simulation::state() const { return state_; }
 
 void Simulation::restore(SimulationState s) {
   if (s.mesh.nodes.size() != state_.mesh.nodes.size() || s.mesh.zones.size() != state_.mesh.zones.size() ||
+      s.zone_state.size() != state_.mesh.zones.size() ||
       s.fracture_counts.size() != bodies_.size() || s.body_plastic_work.size() != bodies_.size() ||
       s.body_viscous_work.size() != bodies_.size() || s.body_hourglass_work.size() != bodies_.size() ||
       s.body_converted_energy.size() != bodies_.size()) {
@@ -158,11 +160,11 @@ void Simulation::compute_forces() {
     const ZoneForceParams params = zone_force_params(material, controls_, state_.time_step_previous);
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
-    artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] =
-        body_corner_forces(state_.mesh, body, geometry_, params, controls_.threads, area_weighted, limiters);
+    artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] = body_corner_forces(
+        state_.mesh, state_.zone_state, body, geometry_, params, controls_.threads, area_weighted, limiters);
   }
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
-    sum_corner_forces(state_.mesh, node_corners_, first, last);
+    sum_corner_forces(state_.mesh.nodes, state_.zone_state.hydro, node_corners_, first, last);
   });
   if (boundary_.has_loads()) boundary_.apply_loads(state_.mesh.nodes, state_.mesh.zones, geometry_, state_.time);
 }
@@ -257,8 +259,8 @@ void Simulation::update_zones() {
     params.shear_modulus = material.shear_modulus();
     params.cfl = cfl_number(material, controls_);
     const double* work_correction = area_weighted_work_.empty() ? nullptr : area_weighted_work_.data();
-    const std::vector<ZoneUpdateResult> results =
-        body_zone_update(state_.mesh, body, geometry_, material, params, controls_.threads, work_correction);
+    const std::vector<ZoneUpdateResult> results = body_zone_update(
+        state_.mesh, state_.zone_state, body, geometry_, material, params, controls_.threads, work_correction);
     for (const ZoneUpdateResult& result : results) {
       state_.ledger.energy.plastic += result.plastic_work;
       state_.body_plastic_work[static_cast<std::size_t>(&body - bodies_.data())] += result.plastic_work;
@@ -285,14 +287,14 @@ void Simulation::conduct_heat() {
   for (const Body& body : bodies_) {
     const Material& material = materials_.at(static_cast<std::size_t>(body.material));
     if (material.shear_modulus() != 0.0) continue;  // bodies without strength only
-    exchange_heat(state_.mesh, body.zone_begin, body.zone_end, coefficient, state_.time_step_next, geometry_,
-                  heat_change_);
+    exchange_heat(state_.mesh, state_.zone_state.hydro, body.zone_begin, body.zone_end, coefficient,
+                  state_.time_step_next, geometry_, heat_change_);
     std::visit([&](const auto& eos) {
       for (Index z = body.zone_begin; z < body.zone_end; ++z) {
         const double change = heat_change_[static_cast<std::size_t>(z)];
         if (change == 0.0) continue;
         zones.specific_energy[z] += change / zones.mass[z];
-        evaluate_eos(eos, 0.0, zones, z);
+        evaluate_eos(eos, 0.0, zones, state_.zone_state.hydro, z);
       }
     }, material.eos);
   }
@@ -325,20 +327,21 @@ void Simulation::fail(const std::string& what, Index zone) const {
 
 void Simulation::evaluate_fracture() {
   // The state just computed is at t^{n+1}; the plastic strain grew over dt^{n+1/2}.
-  evaluate_failure_laws(state_.mesh, bodies_, materials_, failure_laws_, geometry_, state_.time + state_.time_step_next,
-                        state_.time_step_next, state_.fracture_counts);
+  evaluate_failure_laws(state_.mesh, state_.zone_state, bodies_, materials_, failure_laws_, geometry_,
+                        state_.time + state_.time_step_next, state_.time_step_next, state_.fracture_counts);
 }
 
 void Simulation::convert_fractured_zones() {
-  const std::vector<Conversion> chosen = choose_conversions(state_.mesh, bodies_, materials_, failure_laws_,
-                                                            controls_.fracture, boundary_.held_x(), boundary_.held_y());
+  const std::vector<Conversion> chosen = choose_conversions(state_.mesh, state_.zone_state, bodies_, materials_,
+                                                            failure_laws_, controls_.fracture, boundary_.held_x(),
+                                                            boundary_.held_y());
   if (chosen.empty()) return;
   convert_zones(chosen, state_.mesh, state_.particles, controls_.fracture.particles_per_zone,
                 state_.time + state_.time_step_next, state_.zones_per_node, boundary_.held_x(), boundary_.held_y(),
                 {state_.ledger, state_.body_converted_energy, state_.fracture_counts});
   topology_changed_ = true;
   // The step limit now comes from the zones that remain.
-  const StableStep remaining = smallest_stable_step(state_.mesh.zones);
+  const StableStep remaining = smallest_stable_step(state_.mesh.zones, state_.zone_state.hydro);
   state_.stable_time_step = remaining.time_step;
   if (remaining.zone >= 0) state_.controlling_zone = remaining.zone;
   measure_ledger(state_.mesh, state_.particles, state_.ledger);

@@ -21,11 +21,11 @@ TimeStepChoice limit_time_step(double stable, double previous, const Controls& c
   return choice;
 }
 
-StableStep smallest_stable_step(const ZoneFields& zones) {
+StableStep smallest_stable_step(const ZoneFields& zones, const HydroZoneFields& hydro) {
   StableStep smallest{std::numeric_limits<double>::infinity(), -1};
   for (Index z = 0; z < zones.size(); ++z) {
-    if (zones.active[z] && zones.stable_time_step[z] < smallest.time_step) {
-      smallest.time_step = zones.stable_time_step[z];
+    if (zones.active[z] && hydro.stable_time_step[z] < smallest.time_step) {
+      smallest.time_step = hydro.stable_time_step[z];
       smallest.zone = z;
     }
   }

@@ -158,7 +158,7 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
   double largest_strain = 0.0;  // of the zones still in the mesh, after every cycle
   options.on_cycle = [&](const krug::Simulation& s, double) {
     for (krug::Index z = 0; z < s.mesh().zones.size(); ++z) {
-      if (s.mesh().zones.active[z]) largest_strain = std::max(largest_strain, s.mesh().zones.plastic_strain[z]);
+      if (s.mesh().zones.active[z]) largest_strain = std::max(largest_strain, s.zone_state().strength.plastic_strain[z]);
     }
     return true;
   };

@@ -143,13 +143,13 @@ TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates"
   RunOptions options = to(stopped);
   options.interrupt = &interrupt;
   options.on_cycle = [&](const krug::Simulation& s, double) {
-    const auto& damage = s.mesh().zones.damage;
+    const auto& damage = s.zone_state().fracture.damage;
     if (std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; })) interrupt = true;
     return true;
   };
   REQUIRE(krug::output::run_scenario(scenario, options).message == "interrupted");
   const auto checkpoint = krug::output::read_checkpoint(stopped / "checkpoint.bin");
-  const auto& damage = checkpoint.state.mesh.zones.damage;
+  const auto& damage = checkpoint.state.zone_state.fracture.damage;
   CHECK(std::any_of(damage.begin(), damage.end(), [](double d) { return d > 0.0 && d < 1.0; }));
   CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
   check_same_run(reference, stopped);

@@ -16,12 +16,18 @@ using namespace krug;
 
 namespace {
 
+// A mesh of one zone and the zone's state (intact, unstressed), as the kernels take them.
+struct OneZone : Mesh {
+  ZoneState state;
+};
+
 // A mesh of one zone with corners x (counter-clockwise), at rest, of density rho and specific
 // energy e; its mass is rho times its area (planar) or r-weighted volume (RZ).
-Mesh one_zone(const quad::Corners& x, GeometryKind geometry, double rho, double e) {
-  Mesh mesh;
+OneZone one_zone(const quad::Corners& x, GeometryKind geometry, double rho, double e) {
+  OneZone mesh;
   mesh.nodes.resize(4);
   mesh.zones.resize(1);
+  mesh.state.resize(1);
   for (Index p = 0; p < 4; ++p) {
     mesh.nodes.x[p] = x[p].x;
     mesh.nodes.y[p] = x[p].y;
@@ -63,11 +69,11 @@ void move_nodes(Mesh& mesh, double dt) {
 }
 
 // sum_p f_p . u_p of the stored corner forces: the rate of work of the zone's forces on its nodes.
-double corner_power(const Mesh& mesh) {
+double corner_power(const OneZone& mesh) {
   double power = 0.0;
   for (int p = 0; p < 4; ++p) {
-    power += mesh.zones.corner_force[2 * static_cast<std::size_t>(p)] * mesh.nodes.u[p] +
-             mesh.zones.corner_force[2 * static_cast<std::size_t>(p) + 1] * mesh.nodes.v[p];
+    power += mesh.state.hydro.corner_force[2 * static_cast<std::size_t>(p)] * mesh.nodes.u[p] +
+             mesh.state.hydro.corner_force[2 * static_cast<std::size_t>(p) + 1] * mesh.nodes.v[p];
   }
   return power;
 }
@@ -81,16 +87,22 @@ ZoneForceParams stress_only() {
   return params;
 }
 
+template <GeometryKind G, ViscosityModel V>
+void compute_forces_with(OneZone& mesh, const ZoneForceParams& params) {
+  ZoneState& z = mesh.state;
+  compute_corner_forces<G, V>(mesh, z.hydro, z.strength, z.hourglass, z.fracture, 0, 1, params);
+}
+
 template <GeometryKind G>
-void compute_forces(Mesh& mesh, const ZoneForceParams& params) {
+void compute_forces(OneZone& mesh, const ZoneForceParams& params) {
   switch (params.viscosity.model) {
-    case ViscosityModel::edge: compute_corner_forces<G, ViscosityModel::edge>(mesh, 0, 1, params); break;
-    case ViscosityModel::scalar: compute_corner_forces<G, ViscosityModel::scalar>(mesh, 0, 1, params); break;
-    case ViscosityModel::off: compute_corner_forces<G, ViscosityModel::off>(mesh, 0, 1, params); break;
+    case ViscosityModel::edge: compute_forces_with<G, ViscosityModel::edge>(mesh, params); break;
+    case ViscosityModel::scalar: compute_forces_with<G, ViscosityModel::scalar>(mesh, params); break;
+    case ViscosityModel::off: compute_forces_with<G, ViscosityModel::off>(mesh, params); break;
   }
 }
 
-void compute_forces(Mesh& mesh, GeometryKind geometry, const ZoneForceParams& params) {
+void compute_forces(OneZone& mesh, GeometryKind geometry, const ZoneForceParams& params) {
   if (geometry == GeometryKind::axisymmetric) {
     compute_forces<GeometryKind::axisymmetric>(mesh, params);
   } else {
@@ -130,8 +142,8 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
   update.time_step_next = dt;
 
   auto check_step = [&](GeometryKind geometry, Vec2 centre, double dimension) {
-    Mesh mesh = one_zone(distorted, geometry, rho, e);
-    mesh.zones.pressure[0] = pressure;
+    OneZone mesh = one_zone(distorted, geometry, rho, e);
+    mesh.state.hydro.pressure[0] = pressure;
     set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
     const double volume = volume_of(positions(mesh), geometry);
     compute_forces(mesh, geometry, params);
@@ -145,8 +157,10 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
 
     const double energy_before = mesh.zones.mass[0] * mesh.zones.specific_energy[0];
     const ZoneUpdateResult result = geometry == GeometryKind::axisymmetric
-        ? update_zones<GeometryKind::axisymmetric>(mesh, 0, 1, IdealGas{gamma}, NoStrength{}, update)
-        : update_zones<GeometryKind::planar>(mesh, 0, 1, IdealGas{gamma}, NoStrength{}, update);
+        ? update_zones<GeometryKind::axisymmetric>(mesh, mesh.state.hydro, mesh.state.strength, mesh.state.fracture, 0,
+                                                   1, IdealGas{gamma}, NoStrength{}, update)
+        : update_zones<GeometryKind::planar>(mesh, mesh.state.hydro, mesh.state.strength, mesh.state.fracture, 0, 1,
+                                             IdealGas{gamma}, NoStrength{}, update);
     REQUIRE(result.failed_zone < 0);
     const double heating = mesh.zones.mass[0] * mesh.zones.specific_energy[0] - energy_before;
     CHECK(heating == Approx(-work).epsilon(0.0).margin(1e-13 * std::abs(work)));
@@ -161,8 +175,8 @@ TEST_CASE("hydro kernels: the pressure work of a uniform compression is p dV", "
   SECTION("forces on the mid-step geometry") {
     for (const GeometryKind geometry : {GeometryKind::planar, GeometryKind::axisymmetric}) {
       const Vec2 centre{0.6, 0.0};
-      Mesh mesh = one_zone(distorted, geometry, rho, e);  // the mid-step geometry x^{n+1/2}
-      mesh.zones.pressure[0] = pressure;
+      OneZone mesh = one_zone(distorted, geometry, rho, e);  // the mid-step geometry x^{n+1/2}
+      mesh.state.hydro.pressure[0] = pressure;
       set_velocities(mesh, [&](Index p) { return -eps * (positions(mesh)[p] - centre); });
       const double volume = volume_of(positions(mesh), geometry);
       compute_forces(mesh, geometry, params);
@@ -198,11 +212,11 @@ TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[h
   const double s_norm = std::sqrt(double_contraction(stress, stress));
   REQUIRE(equivalent_stress(stress) < strength.yield_stress);
 
-  Mesh mesh = one_zone(distorted, GeometryKind::planar, 7850.0, 0.0);
-  mesh.zones.deviator_xx[0] = stress.xx;
-  mesh.zones.deviator_yy[0] = stress.yy;
-  mesh.zones.deviator_xy[0] = stress.xy;
-  mesh.zones.deviator_zz[0] = stress.zz;
+  OneZone mesh = one_zone(distorted, GeometryKind::planar, 7850.0, 0.0);
+  mesh.state.strength.deviator_xx[0] = stress.xx;
+  mesh.state.strength.deviator_yy[0] = stress.yy;
+  mesh.state.strength.deviator_xy[0] = stress.xy;
+  mesh.state.strength.deviator_zz[0] = stress.zz;
   const double c = std::cos(theta), s = std::sin(theta);
   const quad::Corners start = positions(mesh);
   set_velocities(mesh, [&](Index p) {
@@ -216,11 +230,12 @@ TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[h
   update.time_step_mid = dt;
   update.time_step_next = dt;
   update.shear_modulus = strength.shear_modulus;
-  const ZoneUpdateResult result = update_zones<GeometryKind::planar>(mesh, 0, 1, eos, strength, update);
+  const ZoneUpdateResult result = update_zones<GeometryKind::planar>(
+      mesh, mesh.state.hydro, mesh.state.strength, mesh.state.fracture, 0, 1, eos, strength, update);
   REQUIRE(result.failed_zone < 0);
 
-  const Deviator after{mesh.zones.deviator_xx[0], mesh.zones.deviator_yy[0], mesh.zones.deviator_xy[0],
-                       mesh.zones.deviator_zz[0]};
+  const Deviator after{mesh.state.strength.deviator_xx[0], mesh.state.strength.deviator_yy[0], mesh.state.strength.deviator_xy[0],
+                       mesh.state.strength.deviator_zz[0]};
   const double tolerance = 1e-12 * s_norm;
   CHECK(0.5 * double_contraction(after, after) ==
         Approx(0.5 * double_contraction(stress, stress)).epsilon(0.0).margin(tolerance * s_norm));
@@ -232,7 +247,7 @@ TEST_CASE("hydro kernels: a rigid rotation keeps the deviator's invariants", "[h
   CHECK(after.yy == Approx(expected.yy).epsilon(0.0).margin(tolerance));
   CHECK(after.xy == Approx(expected.xy).epsilon(0.0).margin(tolerance));
   CHECK(std::abs(after.xy - stress.xy) > 1e-2 * s_norm);  // it did turn
-  CHECK(mesh.zones.plastic_strain[0] == 0.0);
+  CHECK(mesh.state.strength.plastic_strain[0] == 0.0);
   CHECK(mesh.zones.density[0] == Approx(7850.0).epsilon(1e-14));  // a rotation keeps the area
 }
 
@@ -258,23 +273,23 @@ TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, 
   params.previous_time_step = 1.0e-8;
 
   auto build = [&](bool with_deviator) {
-    Mesh mesh = one_zone(distorted, GeometryKind::planar, 2700.0, 0.0);
-    mesh.zones.pressure[0] = pressure;
-    mesh.zones.sound_speed[0] = 5000.0;
+    OneZone mesh = one_zone(distorted, GeometryKind::planar, 2700.0, 0.0);
+    mesh.state.hydro.pressure[0] = pressure;
+    mesh.state.hydro.sound_speed[0] = 5000.0;
     if (with_deviator) {
-      mesh.zones.deviator_xx[0] = stress.xx;
-      mesh.zones.deviator_yy[0] = stress.yy;
-      mesh.zones.deviator_xy[0] = stress.xy;
-      mesh.zones.deviator_zz[0] = stress.zz;
+      mesh.state.strength.deviator_xx[0] = stress.xx;
+      mesh.state.strength.deviator_yy[0] = stress.yy;
+      mesh.state.strength.deviator_xy[0] = stress.xy;
+      mesh.state.strength.deviator_zz[0] = stress.zz;
     }
     set_velocities(mesh, [&](Index p) { return velocity[static_cast<std::size_t>(p)]; });
     return mesh;
   };
-  auto total = [](const Mesh& mesh) {
+  auto total = [](const OneZone& mesh) {
     Vec2 sum{};
     double largest = 0.0;
     for (std::size_t p = 0; p < 4; ++p) {
-      const Vec2 f{mesh.zones.corner_force[2 * p], mesh.zones.corner_force[2 * p + 1]};
+      const Vec2 f{mesh.state.hydro.corner_force[2 * p], mesh.state.hydro.corner_force[2 * p + 1]};
       sum += f;
       largest = std::max(largest, norm(f));
     }
@@ -282,11 +297,11 @@ TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, 
   };
 
   SECTION("planar") {
-    Mesh mesh = build(true);
+    OneZone mesh = build(true);
     compute_forces<GeometryKind::planar>(mesh, params);
     const auto [sum, largest] = total(mesh);
-    CHECK(mesh.zones.viscous_speed[0] > 0.0);  // the viscosity acted
-    CHECK((mesh.zones.hourglass_x[0] != 0.0 && mesh.zones.hourglass_y[0] != 0.0));  // and the hourglass springs
+    CHECK(mesh.state.hydro.viscous_speed[0] > 0.0);  // the viscosity acted
+    CHECK((mesh.state.hourglass.hourglass_x[0] != 0.0 && mesh.state.hourglass.hourglass_y[0] != 0.0));  // and the hourglass springs
     CHECK(std::abs(sum.x) < 1e-13 * largest);
     CHECK(std::abs(sum.y) < 1e-13 * largest);
   }
@@ -296,10 +311,10 @@ TEST_CASE("hydro kernels: the corner forces of a zone sum to zero (RZ: axially, 
       INFO((with_deviator ? "with a deviator (r-weighted operator B_p)" : "a gas (dA/dx_p)"));
       ZoneForceParams form = params;
       if (!with_deviator) form.shear_modulus = 0.0;
-      Mesh mesh = build(with_deviator);
+      OneZone mesh = build(with_deviator);
       compute_forces<GeometryKind::axisymmetric>(mesh, form);
       const auto [sum, largest] = total(mesh);
-      CHECK(mesh.zones.viscous_speed[0] > 0.0);
+      CHECK(mesh.state.hydro.viscous_speed[0] > 0.0);
       CHECK(std::abs(sum.x) < 1e-13 * largest);
       const double hoop = (with_deviator ? stress.zz : 0.0) - pressure;  // sigma_tt
       const double area = quad::area(distorted);
@@ -325,14 +340,14 @@ TEST_CASE("hydro kernels: the hourglass stiffness state stops at the plastic bou
   for (const double limit : {1.0, 0.5, 0.0}) {
     INFO("plastic_limit " << limit);
     params.hourglass.plastic_limit = limit;
-    Mesh mesh = one_zone(square, GeometryKind::planar, 11340.0, 0.0);
+    OneZone mesh = one_zone(square, GeometryKind::planar, 11340.0, 0.0);
     set_velocities(mesh, [&](Index p) { return Vec2{p % 2 == 0 ? speed : -speed, 0.0}; });  // the hourglass mode
     const double bound = limit * flow_stress * b_norm;
     double largest = 0.0, previous = 0.0;
     bool grew = true;
     for (int step = 0; step < 400; ++step) {
       compute_forces<GeometryKind::planar>(mesh, params);
-      const double size = std::hypot(mesh.zones.hourglass_x[0], mesh.zones.hourglass_y[0]);
+      const double size = std::hypot(mesh.state.hourglass.hourglass_x[0], mesh.state.hourglass.hourglass_y[0]);
       grew = grew && size >= previous;
       previous = size;
       largest = std::max(largest, size);

@@ -16,10 +16,13 @@ std::vector<double> state_of(const Simulation& sim) {
   std::vector<double> out;
   const NodeFields& n = sim.mesh().nodes;
   const ZoneFields& z = sim.mesh().zones;
+  const HydroZoneFields& h = sim.zone_state().hydro;
+  const StrengthZoneFields& s = sim.zone_state().strength;
+  const HourglassZoneFields& q = sim.zone_state().hourglass;
   for (const auto* f : {&n.x, &n.y, &n.u, &n.v, &n.force_x, &n.force_y}) out.insert(out.end(), f->begin(), f->end());
-  for (const auto* f : {&z.density, &z.specific_energy, &z.pressure, &z.sound_speed, &z.volume, &z.deviator_xx,
-                        &z.deviator_yy, &z.deviator_xy, &z.deviator_zz, &z.plastic_strain, &z.hourglass_x,
-                        &z.hourglass_y, &z.corner_force, &z.viscous_speed, &z.stable_time_step}) {
+  for (const auto* f : {&z.density, &z.specific_energy, &h.pressure, &h.sound_speed, &z.volume, &s.deviator_xx,
+                        &s.deviator_yy, &s.deviator_xy, &s.deviator_zz, &s.plastic_strain, &q.hourglass_x,
+                        &q.hourglass_y, &h.corner_force, &h.viscous_speed, &h.stable_time_step}) {
     out.insert(out.end(), f->begin(), f->end());
   }
   const EnergyLedger& e = sim.ledger().energy;

@@ -60,7 +60,7 @@ PistonLevel piston_level(int n) {
   PistonLevel level;
   level.zones = n;
   level.seconds = run.seconds;
-  for (const ZoneSample& z : row_profile(sim.mesh(), sim.bodies()[0], 0, Coordinate::first_axis)) {
+  for (const ZoneSample& z : row_profile(sim, sim.bodies()[0], 0, Coordinate::first_axis)) {
     level.l1 += std::abs(z.velocity - exact_piston_velocity(z.low, z.high, sim.time())) * z.width();
   }
   level.l1 /= piston::piston_speed * 1.0;

@@ -24,11 +24,12 @@ namespace {
 
 // L1 norm of (density - exact) along each row (a ray of a polar mesh, or the strip's rows), in the
 // coordinate of the problem, averaged over the rows.
-double l1_error(const Mesh& mesh, const Body& body, const ExactProfile& exact, Coordinate coordinate) {
+double l1_error(const Simulation& simulation, const Body& body, const ExactProfile& exact, Coordinate coordinate) {
+  const Mesh& mesh = simulation.mesh();
   const PatchShape shape = patch_shape(mesh, body);
   double sum = 0.0;
   for (int j = 0; j < shape.zones_j; ++j) {
-    for (const ZoneSample& s : row_profile(mesh, body, j, coordinate)) {
+    for (const ZoneSample& s : row_profile(simulation, body, j, coordinate)) {
       sum += std::abs(s.density - exact.mean(exact.density, s.low, s.high)) * s.width();
     }
   }
@@ -70,7 +71,7 @@ void study(const Problem& p) {
     const Run run = run_to_end(scenario);
     INFO(p.name << " at " << along << " x " << across << ": " << run.failure);
     REQUIRE(run.completed());
-    const double error = l1_error(run.simulation.mesh(), run.simulation.bodies().front(), read_exact(p.exact), p.coordinate);
+    const double error = l1_error(run.simulation, run.simulation.bodies().front(), read_exact(p.exact), p.coordinate);
     report("speed-error " + p.name, format_number("L1 density error, %.0f cycles", static_cast<double>(run.simulation.cycle())),
            "0", error, format_number("%.0f zones along, ", along) + format_number("%.4g s", run.seconds),
            run.simulation.mesh().zones.size(), run.seconds);

@@ -33,7 +33,7 @@ Level sod_level(const std::string& file, int along) {
   INFO(file << " at " << along << " zones: " << run.failure);
   REQUIRE(run.completed());
   const Body& tube = run.simulation.bodies().front();
-  return {along, density_l1_error(run.simulation.mesh(), tube, read_exact("sod_t0.25.csv")), run.seconds};
+  return {along, density_l1_error(run.simulation, tube, read_exact("sod_t0.25.csv")), run.seconds};
 }
 
 // Observed order between successive doublings, log2(E_n / E_2n). For a flow with a shock and a

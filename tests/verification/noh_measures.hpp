@@ -44,11 +44,11 @@ inline NohResult measure_noh(const Run& run, const NohCase& c) {
   const double post = post_shock_density(c.dimension);
   const double level = 0.5 * (pre_shock_density(c.dimension) + post);
   NohResult result;
-  result.shock = survey_shock(mesh, gas, c.coordinate, shock_radius, [&](const auto&) { return level; });
+  result.shock = survey_shock(run.simulation, gas, c.coordinate, shock_radius, [&](const auto&) { return level; });
   std::vector<ZoneSample> window;
   const PatchShape shape = patch_shape(mesh, gas);
   for (int j = 0; j < shape.zones_j; ++j) {
-    const auto row = row_profile(mesh, gas, j, c.coordinate);
+    const auto row = row_profile(run.simulation, gas, j, c.coordinate);
     const Front f = front_from_outside(row, level);
     if (!f.found()) continue;
     for (std::size_t k = 0; k + 2 <= f.inner; ++k) {
@@ -78,7 +78,7 @@ inline void check_noh(const Run& run, const NohCase& c) {
     double peak = 0.0;
     const PatchShape shape = patch_shape(run.simulation.mesh(), gas);
     for (int j = 0; j < shape.zones_j; ++j) {
-      peak = std::max(peak, peak_density(row_profile(run.simulation.mesh(), gas, j, c.coordinate)));
+      peak = std::max(peak, peak_density(row_profile(run.simulation, gas, j, c.coordinate)));
     }
     report(c.problem, "shock: density never reaches the mid-level (peak rho)",
            format_number("%.0f", post_shock_density(c.dimension)), peak, "shock not found", zones, run.seconds);

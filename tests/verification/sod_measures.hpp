@@ -43,7 +43,8 @@ struct WaveError {
 
 // Largest error over the rows of the strip, in local zone sizes (the spacing of the two zone centres
 // around the crossing).
-inline std::array<WaveError, 4> wave_errors(const Mesh& mesh, const Body& body, const ExactProfile& exact) {
+inline std::array<WaveError, 4> wave_errors(const Simulation& simulation, const Body& body, const ExactProfile& exact) {
+  const Mesh& mesh = simulation.mesh();
   std::array<WaveError, 4> errors{};
   const PatchShape shape = patch_shape(mesh, body);
   for (std::size_t w = 0; w < waves.size(); ++w) {
@@ -51,7 +52,7 @@ inline std::array<WaveError, 4> wave_errors(const Mesh& mesh, const Body& body, 
     errors[w].zones = -1.0;
   }
   for (int j = 0; j < shape.zones_j; ++j) {
-    const auto row = row_profile(mesh, body, j, Coordinate::first_axis);
+    const auto row = row_profile(simulation, body, j, Coordinate::first_axis);
     for (std::size_t w = 0; w < waves.size(); ++w) {
       const Front f = front_from_outside(row, waves[w].level);
       const double zones = f.found() ? std::abs(f.position - errors[w].exact) / f.spacing
@@ -77,11 +78,12 @@ struct Plateaus {
 inline constexpr int margin_tail = 10;
 inline constexpr int margin = 4;
 
-inline Plateaus plateaus(const Mesh& mesh, const Body& body) {
+inline Plateaus plateaus(const Simulation& simulation, const Body& body) {
+  const Mesh& mesh = simulation.mesh();
   const PatchShape shape = patch_shape(mesh, body);
   std::vector<ZoneSample> star, star_left, star_right;
   for (int j = 0; j < shape.zones_j; ++j) {
-    const auto row = row_profile(mesh, body, j, Coordinate::first_axis);
+    const auto row = row_profile(simulation, body, j, Coordinate::first_axis);
     const Front tail_front = front_from_outside(row, waves[1].level);
     const Front contact_front = front_from_outside(row, waves[2].level);
     const Front shock_front = front_from_outside(row, waves[3].level);

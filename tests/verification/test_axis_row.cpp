@@ -80,11 +80,12 @@ Profile uniaxial_run(bool axisymmetric, double piston_speed, bool plastic) {
   INFO(run.failure);
   REQUIRE(run.completed());
   const Mesh& mesh = run.simulation.mesh();
+  const ZoneState& zone_state = run.simulation.zone_state();
   Profile profile;
   const int rows = axisymmetric ? 4 : 1;
   profile.rows.assign(static_cast<std::size_t>(rows), {});
   for (Index z = 0; z < mesh.zones.size(); ++z) {
-    profile.rows[static_cast<std::size_t>(z / 800)].push_back(mesh.zones.deviator_xx[z] - mesh.zones.pressure[z]);
+    profile.rows[static_cast<std::size_t>(z / 800)].push_back(zone_state.strength.deviator_xx[z] - zone_state.hydro.pressure[z]);
   }
   for (Index n = 0; n < mesh.nodes.size(); ++n) profile.radial_speed = std::max(profile.radial_speed, std::abs(mesh.nodes.v[n]));
   return profile;

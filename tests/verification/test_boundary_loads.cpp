@@ -283,6 +283,7 @@ TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau an
   };
   std::vector<Sample> strip;
   const Mesh& mesh = sim.mesh();
+  const ZoneState& zone_state = sim.zone_state();
   for (Index z = 0; z < mesh.zones.size(); ++z) {
     const ZoneCorners& c = mesh.zones.corners[z];
     double x = 0.0, v = 0.0;
@@ -290,7 +291,7 @@ TEST_CASE("B5 traction step on a half-space in plane shear: the shear plateau an
       x += 0.25 * mesh.nodes.x[n];
       v += 0.25 * mesh.nodes.v[n];
     }
-    strip.push_back({x, v, mesh.zones.deviator_xy[z]});
+    strip.push_back({x, v, zone_state.strength.deviator_xy[z]});
   }
   std::sort(strip.begin(), strip.end(), [](const Sample& a, const Sample& b) { return a.x < b.x; });
   double front = std::numeric_limits<double>::quiet_NaN();

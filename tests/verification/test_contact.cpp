@@ -215,6 +215,7 @@ Squeeze squeeze(GeometryKind geometry, int upper_across, double gap_tolerance) {
   if (gap_tolerance > 0.0) stack.setup.contact.controls.gap_tolerance = gap_tolerance;
   Simulation sim(stack.setup);
   const Mesh& mesh = sim.mesh();
+  const ZoneState& zone_state = sim.zone_state();
   q.zones = mesh.zones.size();
   while (!sim.finished()) {
     const double t_mid = sim.time() + 0.5 * sim.next_time_step();
@@ -240,7 +241,7 @@ Squeeze squeeze(GeometryKind geometry, int upper_across, double gap_tolerance) {
   q.exact_stress = -effective_modulus * strain;
   for (int side = 0; side < 2; ++side) {
     for (Index z : stack.interface_zones[side]) {
-      const double stress = mesh.zones.deviator_xx[z] - mesh.zones.pressure[z];
+      const double stress = zone_state.strength.deviator_xx[z] - zone_state.hydro.pressure[z];
       q.mean[side] += stress / static_cast<double>(stack.interface_zones[side].size());
       q.worst_zone = std::max(q.worst_zone, std::abs(stress / q.exact_stress - 1.0));
     }

@@ -15,7 +15,7 @@
 //
 // Cases: an 8 x 4 block of Wilkins aluminium (verification.md E1/E4: rho0 2785, K 79.06 GPa,
 // mu 27.6 GPa, Y0 0.3 GPa) with an expanding and shearing initial velocity field. Zones are
-// pre-damaged directly (mesh.zones.damaged = 1) and a low elongation limit (0.4 %) damages more of
+// pre-damaged directly (zone_state.fracture.damaged = 1) and a low elongation limit (0.4 %) damages more of
 // them during the run; a low loosening limit (chi_* = 0.01) makes the damaged, expanding zones fully
 // fractured, so they convert layer by layer from the free surface.
 #include <catch2/catch.hpp>
@@ -66,8 +66,9 @@ SimulationSetup moving_block(GeometryKind geometry, int particles_per_zone, doub
     s.mesh.nodes.u[n] = 100.0 + a * (x - 0.5 * length) + 0.5 * a * y;
     s.mesh.nodes.v[n] = a * y;
   }
+  s.zone_state.resize(s.mesh.zones.size());
   for (Index z = 0; z < s.mesh.zones.size(); ++z) {
-    if (damage(quad::centre(s.mesh.corner_positions(z)))) s.mesh.zones.damaged[z] = 1;
+    if (damage(quad::centre(s.mesh.corner_positions(z)))) s.zone_state.fracture.damaged[z] = 1;
   }
   fracture::FractureLimits limits;
   limits.elongation = elongation_limit;

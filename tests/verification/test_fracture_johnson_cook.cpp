@@ -104,16 +104,18 @@ void check_ledgers(const std::string& problem, const Outcome& out, const Simulat
   CHECK(out.worst_energy_drift < 1e-12);
 }
 
-double triaxiality(const ZoneFields& z, Index k) {
+double triaxiality(const ZoneState& state, Index k) {
+  const StrengthZoneFields& z = state.strength;
   const double vm = std::sqrt(1.5 * (z.deviator_xx[k] * z.deviator_xx[k] + z.deviator_yy[k] * z.deviator_yy[k] +
                                      z.deviator_zz[k] * z.deviator_zz[k] + 2.0 * z.deviator_xy[k] * z.deviator_xy[k]));
-  return vm > 0.0 ? -z.pressure[k] / vm : 0.0;
+  return vm > 0.0 ? -state.hydro.pressure[k] / vm : 0.0;
 }
 
 // Runs until a zone is damaged, following every zone, then `after` more steps (damaged zones loosen and
 // convert) watching the ledgers.
 Outcome run(Simulation& sim, long after) {
   const ZoneFields& zones = sim.mesh().zones;
+  const ZoneState& zone_state = sim.zone_state();
   const Index n = zones.size();
   std::vector<std::vector<StepRecord>> histories(static_cast<std::size_t>(n));
   std::vector<double> strain_before(static_cast<std::size_t>(n), 0.0);
@@ -125,18 +127,18 @@ Outcome run(Simulation& sim, long after) {
     const double dt = sim.time() - t0;
     for (Index k = 0; k < n && out.zone < 0; ++k) {
       auto& h = histories[static_cast<std::size_t>(k)];
-      const double increment = zones.plastic_strain[k] - strain_before[static_cast<std::size_t>(k)];
-      strain_before[static_cast<std::size_t>(k)] = zones.plastic_strain[k];
+      const double increment = zone_state.strength.plastic_strain[k] - strain_before[static_cast<std::size_t>(k)];
+      strain_before[static_cast<std::size_t>(k)] = zone_state.strength.plastic_strain[k];
       // On the failing step the deviator is already zeroed: keep the previous step's triaxiality.
-      const double eta = zones.damaged[k] ? (h.empty() ? 0.0 : h.back().eta) : triaxiality(zones, k);
+      const double eta = zone_state.fracture.damaged[k] ? (h.empty() ? 0.0 : h.back().eta) : triaxiality(zone_state, k);
       h.push_back({increment, increment / dt, eta});
     }
     if (out.zone < 0) {
       for (Index k = 0; k < n; ++k) {
-        if (zones.damaged[k]) {
+        if (zone_state.fracture.damaged[k]) {
           out.zone = k;
-          out.failure_strain = zones.plastic_strain[k];
-          out.damage = zones.damage[k];
+          out.failure_strain = zone_state.strength.plastic_strain[k];
+          out.damage = zone_state.fracture.damage[k];
           out.history = histories[static_cast<std::size_t>(k)];
           extra = 0;
           break;
@@ -191,7 +193,7 @@ TEST_CASE("Johnson-Cook damage: a rod in uniaxial tension fails at eps_f(1/3) (R
   Simulation sim = pulled_bar(GeometryKind::axisymmetric);
   const Outcome out = run(sim, 2000);
   REQUIRE(out.zone >= 0);
-  CHECK(sim.mesh().zones.damage_criterion[out.zone] == static_cast<std::uint8_t>(fracture::Criterion::johnson_cook));
+  CHECK(sim.zone_state().fracture.damage_criterion[out.zone] == static_cast<std::uint8_t>(fracture::Criterion::johnson_cook));
   const Prediction at_third = predict(out.history, 1.0 / 3.0);
   const double formula = jc85_fracture_strain(1.0 / 3.0, at_third.mean_rate);
   report("JC damage, RZ uniaxial tension", "failure plastic strain", "D_ref(eta = 1/3) = 1", out.failure_strain,
@@ -262,7 +264,7 @@ TEST_CASE("Johnson-Cook damage: damaged zones loosen and convert, ledgers close 
     }
     const FractureCounts& counts = sim.fracture_counts(0);
     double largest_damage = 0.0;
-    for (Index z = 0; z < sim.mesh().zones.size(); ++z) largest_damage = std::max(largest_damage, sim.mesh().zones.damage[z]);
+    for (Index z = 0; z < sim.mesh().zones.size(); ++z) largest_damage = std::max(largest_damage, sim.zone_state().fracture.damage[z]);
     const std::string name = geometry == GeometryKind::planar ? "planar" : "RZ";
     report("JC damage, expanding block " + name, "ledgers with conversion", "round-off", worst_drift,
            "damaged " + std::to_string(counts.damaged) + ", converted " + std::to_string(counts.converted) +

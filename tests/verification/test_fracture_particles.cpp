@@ -60,7 +60,8 @@ SimulationSetup particles_in_a_box(double end_time) {
     s.mesh.nodes.u[n] = wall_speed;
     s.constraints.push_back({n, true, true});
   }
-  for (Index z = block.zone_begin; z < block.zone_end; ++z) s.mesh.zones.damaged[z] = 1;
+  s.zone_state.resize(s.mesh.zones.size());
+  for (Index z = block.zone_begin; z < block.zone_end; ++z) s.zone_state.fracture.damaged[z] = 1;
   fracture::FractureLimits limits;
   limits.elongation = 10.0;  // enables fracture; never reached
   limits.loosening = 1e-4;

@@ -57,9 +57,10 @@ SimulationSetup punch_setup(double end_time, double floor_ratio) {
   s.bodies.push_back(body_from("punch", 1, punch));
   for (Index n = punch.node_begin; n < punch.node_end; ++n) s.mesh.nodes.u[n] = -punch_speed;
   for (Index n : plate.sides.at("j_max")) s.constraints.push_back({n, true, true});  // the rim r = 6 mm
+  s.zone_state.resize(s.mesh.zones.size());
   for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
     const double r = quad::centre(s.mesh.corner_positions(z)).y;
-    if (r > punch_radius && r < punch_radius + band_width) s.mesh.zones.damaged[z] = 1;
+    if (r > punch_radius && r < punch_radius + band_width) s.zone_state.fracture.damaged[z] = 1;
   }
   fracture::FractureLimits al6061;
   al6061.elongation = 0.4;
@@ -97,14 +98,15 @@ PunchRun run_punch(Simulation& sim) {
       sim.step();
       // The floor rule, on the zones the rule saw: those updated this step (active before it).
       const ZoneFields& zones = sim.mesh().zones;
+      const ZoneState& zone_state = sim.zone_state();
       std::vector<double> steps;
       for (Index z = 0; z < zones.size(); ++z) {
-        if (active_before[static_cast<std::size_t>(z)]) steps.push_back(zones.stable_time_step[z]);
+        if (active_before[static_cast<std::size_t>(z)]) steps.push_back(zone_state.hydro.stable_time_step[z]);
       }
       const double median_step = median(steps);
       for (Index z = plate.zone_begin; z < plate.zone_end && floor_ratio > 0.0; ++z) {
-        if (!zones.active[z] || !zones.damaged[z]) continue;
-        const double margin = zones.stable_time_step[z] / (floor_ratio * median_step);
+        if (!zones.active[z] || !zone_state.fracture.damaged[z]) continue;
+        const double margin = zone_state.hydro.stable_time_step[z] / (floor_ratio * median_step);
         run.worst_floor_margin = std::min(run.worst_floor_margin, margin);
         if (margin < 1.0) ++run.floor_violations;
       }

@@ -146,19 +146,20 @@ Variant run_variant(const nlohmann::json& document) {
   v.zones = sim.mesh().zones.size();
   // The spall plane: the zone damaged first, by the initial position of its centre.
   const ZoneFields& zones = sim.mesh().zones;
+  const ZoneState& zone_state = sim.zone_state();
   Index first = -1;
   for (Index z = target.zone_begin; z < target.zone_end; ++z) {
-    if (!zones.damaged[z]) continue;
+    if (!zone_state.fracture.damaged[z]) continue;
     ++v.damaged;
-    if (first < 0 || zones.damage_time[z] < zones.damage_time[first]) first = z;
+    if (first < 0 || zone_state.fracture.damage_time[z] < zone_state.fracture.damage_time[first]) first = z;
   }
   const Body& flyer = sim.bodies()[0];
-  for (Index z = flyer.zone_begin; z < flyer.zone_end; ++z) v.flyer_damaged += zones.damaged[z] ? 1 : 0;
+  for (Index z = flyer.zone_begin; z < flyer.zone_end; ++z) v.flyer_damaged += zone_state.fracture.damaged[z] ? 1 : 0;
   if (first >= 0) {
     double centre = 0.0;
     for (Index n : zones.corners[first]) centre += 0.25 * sim.mesh().nodes.x0[n];
     v.depth = free_surface - centre;
-    v.first_damage_time = zones.damage_time[first];
+    v.first_damage_time = zone_state.fracture.damage_time[first];
   }
   const Ledger& ledger = sim.ledger();
   v.axial_momentum_error = std::abs(ledger.axial_momentum - ledger.initial_axial_momentum) / std::abs(ledger.initial_axial_momentum);

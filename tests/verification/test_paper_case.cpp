@@ -97,11 +97,12 @@ PaperRun run_paper_case(const std::string& file) {
   // Damage onsets, from every cycle (a zone converted later is still seen).
   options.on_cycle = [&](const Simulation& sim, double) {
     const Mesh& mesh = sim.mesh();
+    const ZoneState& zone_state = sim.zone_state();
     for (std::size_t p = 0; p < plates; ++p) {
       const Body& plate = sim.bodies()[p + 1];
       for (Index z = plate.zone_begin; z < plate.zone_end; ++z) {
-        if (!mesh.zones.active[z] || !mesh.zones.damaged[z]) continue;
-        const double t = mesh.zones.damage_time[z];
+        if (!mesh.zones.active[z] || !zone_state.fracture.damaged[z]) continue;
+        const double t = zone_state.fracture.damage_time[z];
         if (t >= run.first_damage[p].time && (t >= run.first_damage_on_axis[p].time)) continue;
         const Vec2 c = centroid(mesh, z);
         if (t < run.first_damage[p].time) run.first_damage[p] = {t, c.y, depth_in_plate(mesh, plate, c)};

@@ -82,7 +82,8 @@ SimulationSetup corner_scene(const Shot& shot, bool held_block, double end_time)
     s.mesh.nodes.v[n] = shot.velocity.y;
   }
   const Index zone = particle.zone_begin;
-  s.mesh.zones.damaged[zone] = 1;
+  s.zone_state.resize(s.mesh.zones.size());
+  s.zone_state.fracture.damaged[zone] = 1;
   s.mesh.zones.density[zone] = 0.99 * s.materials[1].reference_density;  // loosened: chi = 0.01 > chi_*
   if (held_block) {
     for (Index n = block.node_begin; n < block.node_end; ++n) s.constraints.push_back({n, true, true});

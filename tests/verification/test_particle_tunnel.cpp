@@ -58,7 +58,8 @@ SimulationSetup particle_scene(const std::vector<Shot>& shots, double end_time) 
       s.mesh.nodes.u[n] = shot.velocity.x;
       s.mesh.nodes.v[n] = shot.velocity.y;
     }
-    s.mesh.zones.damaged[patch.zone_begin] = 1;
+    s.zone_state.resize(s.mesh.zones.size());
+    s.zone_state.fracture.damaged[patch.zone_begin] = 1;
     s.mesh.zones.density[patch.zone_begin] = 0.99 * s.materials[static_cast<std::size_t>(shot.material)].reference_density;
     s.bodies.push_back(body_from("particle " + std::to_string(k), shot.material, patch));
   }

@@ -53,7 +53,7 @@ TEST_CASE("Saltzman piston: planar shock at t = 0.7 and no tangling up to t = 0.
   const double exact_shock = shock_speed * check_time;
   const double piston = check_time;  // the piston started at x = 0 with u = 1
 
-  const ShockSurvey shock = survey_shock(sim.mesh(), gas, Coordinate::first_axis, exact_shock,
+  const ShockSurvey shock = survey_shock(sim, gas, Coordinate::first_axis, exact_shock,
                                          [](const auto&) { return 0.5 * (1.0 + post_shock_density); });
   INFO("shock rows from " << shock.smallest << " to " << shock.largest);
   CHECK(shock.all_found);
@@ -66,7 +66,7 @@ TEST_CASE("Saltzman piston: planar shock at t = 0.7 and no tangling up to t = 0.
 
   std::vector<ZoneSample> window;
   for (int j = first_row; j <= last_row; ++j) {
-    for (const ZoneSample& z : row_profile(sim.mesh(), gas, j, Coordinate::first_axis)) window.push_back(z);
+    for (const ZoneSample& z : row_profile(sim, gas, j, Coordinate::first_axis)) window.push_back(z);
   }
   const PlateauFit density = plateau(window, piston + 0.05, exact_shock - 0.025, post_shock_density, &ZoneSample::density);
   INFO("post-shock density: mean " << density.mean << " over " << density.zones << " zones, worst off by "

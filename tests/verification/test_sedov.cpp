@@ -53,7 +53,7 @@ void check_sedov(const Run& run, const SedovCase& c) {
   CHECK(drift < energy_drift_tolerance);
   report(c.problem, "total energy drift", "0 (round-off)", drift, "< 1e-12", zones, run.seconds);
 
-  const ShockSurvey shock = survey_shock(sim.mesh(), gas, c.coordinate, c.shock_radius,
+  const ShockSurvey shock = survey_shock(sim, gas, c.coordinate, c.shock_radius,
                                          [](const std::vector<ZoneSample>& row) { return 0.5 * (1.0 + peak_density(row)); });
   INFO("shock on the rows: from " << shock.smallest << " to " << shock.largest << ", worst " << shock.worst_zones
                                   << " zones of " << shock.zone_size);

@@ -38,8 +38,8 @@ TEST_CASE("E1 slab impact: plateau, peak, separation, momentum and the booked im
   int plateau_samples = 0;
   while (!sim.finished()) {
     sim.step();
-    const ZoneFields& zones = sim.mesh().zones;
-    const double stress = zones.deviator_xx[probe] - zones.pressure[probe];
+    const ZoneState& zone_state = sim.zone_state();
+    const double stress = zone_state.strength.deviator_xx[probe] - zone_state.hydro.pressure[probe];
     peak = std::min(peak, stress);
     if (sim.time() > arrival + 0.3e-6 && sim.time() < arrival + 1.2e-6) {
       plateau_sum += stress;

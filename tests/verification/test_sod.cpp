@@ -41,7 +41,7 @@ void check_sod(const std::string& problem, const Run& run) {
   CHECK(sim.ledger().relative_energy_drift() < 1e-12);
   report(problem, "energy drift", "0 (round-off)", sim.ledger().relative_energy_drift(), "< 1e-12", zones, run.seconds);
 
-  const auto errors = sod::wave_errors(sim.mesh(), tube, exact);
+  const auto errors = sod::wave_errors(sim, tube, exact);
   for (std::size_t w = 0; w < sod::waves.size(); ++w) {
     INFO(sod::waves[w].name << ": Krug " << errors[w].position << ", exact " << errors[w].exact << ", error "
                             << errors[w].zones << " zones");
@@ -51,7 +51,7 @@ void check_sod(const std::string& problem, const Run& run) {
            zones, run.seconds);
   }
 
-  const sod::Plateaus p = sod::plateaus(sim.mesh(), tube);
+  const sod::Plateaus p = sod::plateaus(sim, tube);
   const std::array<std::pair<const char*, std::pair<PlateauFit, double>>, 4> states{{
       {"p*", {p.pressure, sod::star_pressure}},
       {"u*", {p.velocity, sod::star_velocity}},
@@ -71,7 +71,7 @@ void check_sod(const std::string& problem, const Run& run) {
            zones, run.seconds);
   }
 
-  const double l1 = density_l1_error(sim.mesh(), tube, exact);
+  const double l1 = density_l1_error(sim, tube, exact);
   CHECK(l1 < l1_bound_200_zones);
   report(problem, "L1 density error", "0", l1, format_number("< %.1e", l1_bound_200_zones), zones, run.seconds);
 }

@@ -68,9 +68,10 @@ TEST_CASE("E4 Wilkins flyer plate: HEL precursor, plastic state, fronts and the 
       at_second = strip_profile(sim, sim.bodies()[0]);
     }
     const ZoneFields& zones = sim.mesh().zones;
+    const ZoneState& zone_state = sim.zone_state();
     for (Probe& p : probes) {
-      p.deviator_xx.push_back(zones.deviator_xx[p.zone]);
-      p.plastic_strain.push_back(zones.plastic_strain[p.zone]);
+      p.deviator_xx.push_back(zone_state.strength.deviator_xx[p.zone]);
+      p.plastic_strain.push_back(zone_state.strength.plastic_strain[p.zone]);
       p.density.push_back(zones.density[p.zone]);
     }
   });

@@ -29,16 +29,20 @@ double field_difference(const std::vector<double>& a, const std::vector<double>&
 
 // Largest relative difference over the state of two runs on the same mesh: node positions and
 // velocities, zone density, energy, pressure and deviator.
-double state_difference(const Mesh& a, const Mesh& b) {
+double state_difference(const Simulation& simulation_a, const Simulation& simulation_b) {
+  const Mesh& a = simulation_a.mesh();
+  const Mesh& b = simulation_b.mesh();
+  const ZoneState& sa = simulation_a.zone_state();
+  const ZoneState& sb = simulation_b.zone_state();
   return std::max({field_difference(a.nodes.x, b.nodes.x), field_difference(a.nodes.y, b.nodes.y),
                    field_difference(a.nodes.u, b.nodes.u), field_difference(a.nodes.v, b.nodes.v),
                    field_difference(a.zones.density, b.zones.density),
                    field_difference(a.zones.specific_energy, b.zones.specific_energy),
-                   field_difference(a.zones.pressure, b.zones.pressure),
-                   field_difference(a.zones.deviator_xx, b.zones.deviator_xx),
-                   field_difference(a.zones.deviator_yy, b.zones.deviator_yy),
-                   field_difference(a.zones.deviator_xy, b.zones.deviator_xy),
-                   field_difference(a.zones.deviator_zz, b.zones.deviator_zz)});
+                   field_difference(sa.hydro.pressure, sb.hydro.pressure),
+                   field_difference(sa.strength.deviator_xx, sb.strength.deviator_xx),
+                   field_difference(sa.strength.deviator_yy, sb.strength.deviator_yy),
+                   field_difference(sa.strength.deviator_xy, sb.strength.deviator_xy),
+                   field_difference(sa.strength.deviator_zz, sb.strength.deviator_zz)});
 }
 
 // Steps two simulations with the same time-step sequence (each step the smaller of their two choices).
@@ -66,12 +70,13 @@ TEST_CASE("E7 a pre-stressed block under a prescribed rigid rotation keeps its i
   const double rho0 = 2700.0, bulk = 7.0e10, shear = 2.6e10;
   setup.materials.push_back(Material{"solid", rho0, LinearBulk{bulk, rho0}, PerfectlyPlastic{shear, yield_stress}});
   setup.bodies.push_back({"block", 0, patch.node_begin, patch.node_end, patch.zone_begin, patch.zone_end});
+  setup.zone_state.resize(setup.mesh.zones.size());
   for (Index z = patch.zone_begin; z < patch.zone_end; ++z) {
     setup.mesh.zones.density[z] = 1.001 * rho0;
-    setup.mesh.zones.deviator_xx[z] = initial.xx;
-    setup.mesh.zones.deviator_yy[z] = initial.yy;
-    setup.mesh.zones.deviator_xy[z] = initial.xy;
-    setup.mesh.zones.deviator_zz[z] = initial.zz;
+    setup.zone_state.strength.deviator_xx[z] = initial.xx;
+    setup.zone_state.strength.deviator_yy[z] = initial.yy;
+    setup.zone_state.strength.deviator_xy[z] = initial.xy;
+    setup.zone_state.strength.deviator_zz[z] = initial.zz;
   }
   // The rotation is prescribed kinematically: every node's velocity is held (so the unbalanced
   // boundary tractions of the pre-stress move nothing) and set before each step to carry the node
@@ -111,17 +116,18 @@ TEST_CASE("E7 a pre-stressed block under a prescribed rigid rotation keeps its i
   REQUIRE(steps > 50);
 
   const ZoneFields& zones = sim.mesh().zones;
+  const ZoneState& zone_state = sim.zone_state();
   const double magnitude = std::sqrt(double_contraction(initial, initial));
   const double initial_pressure = bulk * 0.001;
   const Deviator by_scheme_angle = rotate_deviator(initial, scheme_angle);
   const Deviator by_quarter_turn = rotate_deviator(initial, quarter_turn);  // (yy, xx, -xy, zz)
   double invariant_error = 0.0, pressure_error = 0.0, plastic = 0.0, scheme_error = 0.0, body_error = 0.0;
   for (Index z = 0; z < zones.size(); ++z) {
-    const Deviator s = zone_deviator(zones, z);
+    const Deviator s = zone_deviator(zone_state.strength, z);
     invariant_error = std::max({invariant_error, std::abs(double_contraction(s, s) / (magnitude * magnitude) - 1.0),
                                 std::abs(determinant(s) / determinant(initial) - 1.0)});
-    pressure_error = std::max(pressure_error, std::abs(zones.pressure[z] / initial_pressure - 1.0));
-    plastic = std::max(plastic, zones.plastic_strain[z]);
+    pressure_error = std::max(pressure_error, std::abs(zone_state.hydro.pressure[z] / initial_pressure - 1.0));
+    plastic = std::max(plastic, zone_state.strength.plastic_strain[z]);
     auto distance = [&](const Deviator& t) {
       return std::max({std::abs(s.xx - t.xx), std::abs(s.yy - t.yy), std::abs(s.xy - t.xy), std::abs(s.zz - t.zz)}) /
              magnitude;
@@ -169,7 +175,7 @@ TEST_CASE("E7 Y -> infinity reproduces the elastic E1 slab impact exactly", "[E7
   REQUIRE(a.completed());
   REQUIRE(b.completed());
   CHECK(a.simulation.cycle() == b.simulation.cycle());
-  const double difference = state_difference(a.simulation.mesh(), b.simulation.mesh());
+  const double difference = state_difference(a.simulation, b.simulation);
   CHECK(difference == 0.0);
   CHECK(b.simulation.ledger().energy.plastic == 0.0);
   report("E7 Y -> infinity", "E1 slab impact: state difference from the elastic run", "0", difference, "bitwise",
@@ -186,7 +192,7 @@ TEST_CASE("E7 mu -> 0 and Y = 0 reproduce the hydro Sod run, and Y = 0 keeps the
   Simulation a(hydro.setup), b(vanishing.setup);
   while (!a.finished()) step_together(a, b);
   CHECK(b.finished());
-  const double vanishing_difference = state_difference(a.mesh(), b.mesh());
+  const double vanishing_difference = state_difference(a, b);
   INFO("largest relative difference from the hydro run: " << vanishing_difference);
   // Identical but for terms of the size of mu itself (a denormal hourglass force where the hydro
   // force is exactly zero): measured 1.2e-300.
@@ -207,9 +213,9 @@ TEST_CASE("E7 mu -> 0 and Y = 0 reproduce the hydro Sod run, and Y = 0 keeps the
   const Run hydro_run = run_to_end(hydro);
   double largest_deviator = 0.0;
   const Run stiff_run = run_to_end(stiff, [&](const Simulation& sim) {
-    const ZoneFields& zones = sim.mesh().zones;
-    for (Index z = 0; z < zones.size(); ++z) {
-      largest_deviator = std::max(largest_deviator, std::sqrt(double_contraction(zone_deviator(zones, z), zone_deviator(zones, z))));
+    const StrengthZoneFields& strength = sim.zone_state().strength;
+    for (Index z = 0; z < sim.mesh().zones.size(); ++z) {
+      largest_deviator = std::max(largest_deviator, std::sqrt(double_contraction(zone_deviator(strength, z), zone_deviator(strength, z))));
     }
   });
   REQUIRE(hydro_run.completed());
@@ -217,8 +223,8 @@ TEST_CASE("E7 mu -> 0 and Y = 0 reproduce the hydro Sod run, and Y = 0 keeps the
   CHECK(largest_deviator == 0.0);
   CHECK(stiff_run.simulation.ledger().energy.plastic == 0.0);  // Y = 0: no plastic work either
   const ExactProfile exact = read_exact("sod_t0.25.csv");
-  const double hydro_error = density_l1_error(hydro_run.simulation.mesh(), hydro_run.simulation.bodies()[0], exact);
-  const double stiff_error = density_l1_error(stiff_run.simulation.mesh(), stiff_run.simulation.bodies()[0], exact);
+  const double hydro_error = density_l1_error(hydro_run.simulation, hydro_run.simulation.bodies()[0], exact);
+  const double stiff_error = density_l1_error(stiff_run.simulation, stiff_run.simulation.bodies()[0], exact);
   INFO("L1 density error: hydro " << hydro_error << ", Y = 0 with mu = 1.4 Pa " << stiff_error);
   CHECK(stiff_error < std::sqrt(2.0) * hydro_error);
   report("E7 Y = 0, mu = 1.4 Pa", "Sod: largest norm(s) over the run (Pa)", "0", largest_deviator, "exact",

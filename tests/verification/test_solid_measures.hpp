@@ -61,10 +61,10 @@ struct StripZone {
 
 inline std::vector<StripZone> strip_profile(const Simulation& sim, const Body& body) {
   std::vector<StripZone> strip;
-  const ZoneFields& zones = sim.mesh().zones;
-  for (const ZoneSample& s : row_profile(sim.mesh(), body, 0, Coordinate::first_axis)) {
-    strip.push_back({s.zone, s.position, s.density, s.pressure, zones.deviator_xx[s.zone], s.velocity,
-                     zones.plastic_strain[s.zone]});
+  const ZoneState& zone_state = sim.zone_state();
+  for (const ZoneSample& s : row_profile(sim, body, 0, Coordinate::first_axis)) {
+    strip.push_back({s.zone, s.position, s.density, s.pressure, zone_state.strength.deviator_xx[s.zone], s.velocity,
+                     zone_state.strength.plastic_strain[s.zone]});
   }
   return strip;
 }
@@ -112,13 +112,13 @@ inline StripPlateau strip_plateau(const std::vector<StripZone>& strip, double fr
 
 // ---- the yield surface -------------------------------------------------------------------------
 
-inline Deviator zone_deviator(const ZoneFields& zones, Index z) {
-  return {zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z]};
+inline Deviator zone_deviator(const StrengthZoneFields& strength, Index z) {
+  return {strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z], strength.deviator_zz[z]};
 }
 
 // von Mises equivalent stress sqrt(3/2 s:s) of a zone (Pa).
-inline double zone_equivalent_stress(const ZoneFields& zones, Index z) {
-  return equivalent_stress(zone_deviator(zones, z));
+inline double zone_equivalent_stress(const StrengthZoneFields& strength, Index z) {
+  return equivalent_stress(zone_deviator(strength, z));
 }
 
 // Tracks, over a run, which zones yielded in the last step (their plastic strain grew).
@@ -126,7 +126,7 @@ struct YieldTracker {
   std::vector<double> previous, current;
   void observe(const Simulation& sim) {
     previous.swap(current);
-    current.assign(sim.mesh().zones.plastic_strain.begin(), sim.mesh().zones.plastic_strain.end());
+    current.assign(sim.zone_state().strength.plastic_strain.begin(), sim.zone_state().strength.plastic_strain.end());
   }
   bool yielded_last_step(Index z) const {
     return previous.size() == current.size() && current[z] > previous[z];

@@ -129,12 +129,12 @@ TEST_CASE("E3 elastic-plastic piston: plateaux, fronts and the yield surface", "
     // A zone that yielded in the last step sits on the surface: sqrt(3/2 s:s) = Y, and in uniaxial
     // strain (s_yy = s_zz = -s_xx/2) |s_xx| = 2Y/3, to round-off (the return scales the trial onto the
     // surface: relative error a few ulps; allow 1e-12). No zone lies outside.
-    const ZoneFields& zones = sim.mesh().zones;
+    const StrengthZoneFields& strength = sim.zone_state().strength;
     const double two_thirds_y = 2.0 * piston::yield_stress / 3.0;
     int on_surface = 0, behind_waves = 0;
     double worst_on_surface = 0.0, worst_outside = 0.0;
     for (const StripZone& z : strip) {
-      const double equivalent = zone_equivalent_stress(zones, z.zone);
+      const double equivalent = zone_equivalent_stress(strength, z.zone);
       worst_outside = std::max(worst_outside, equivalent / piston::yield_stress - 1.0);
       if (z.position > fronts.elastic - 30 * dx) continue;
       ++behind_waves;

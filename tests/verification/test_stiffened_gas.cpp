@@ -42,6 +42,7 @@ TEST_CASE("stiffened gas: a piston in water drives the shock of the ideal-gas ju
   // The shock: where the zone-mean velocity crosses half the piston's speed; a captured jump is centred
   // there. Within 2 zones of D t (the criterion of the other piston and shock-tube problems).
   const Mesh& mesh = sim.mesh();
+  const ZoneState& zone_state = sim.zone_state();
   const Body& body = sim.bodies().front();
   double front = 0.0;
   std::vector<double> centre, pressure, density, velocity;
@@ -54,7 +55,7 @@ TEST_CASE("stiffened gas: a piston in water drives the shock of the ideal-gas ju
     }
     centre.push_back(x);
     velocity.push_back(u);
-    pressure.push_back(mesh.zones.pressure[z]);
+    pressure.push_back(zone_state.hydro.pressure[z]);
     density.push_back(mesh.zones.density[z]);
   }
   for (std::size_t i = 1; i < centre.size(); ++i) {

@@ -211,7 +211,8 @@ struct ZoneSample {
 
 inline double coordinate_of(Vec2 p, Coordinate c) { return c == Coordinate::first_axis ? p.x : norm(p); }
 
-inline ZoneSample sample_zone(const Mesh& mesh, Index z, Coordinate c) {
+inline ZoneSample sample_zone(const Simulation& simulation, Index z, Coordinate c) {
+  const Mesh& mesh = simulation.mesh();
   ZoneSample s;
   s.zone = z;
   const quad::Corners x = mesh.corner_positions(z);
@@ -230,23 +231,24 @@ inline ZoneSample sample_zone(const Mesh& mesh, Index z, Coordinate c) {
   }
   s.velocity = 0.25 * velocity;
   s.density = mesh.zones.density[z];
-  s.pressure = mesh.zones.pressure[z];
+  s.pressure = simulation.zone_state().hydro.pressure[z];
   s.specific_energy = mesh.zones.specific_energy[z];
   return s;
 }
 
 // Row j of the patch (i increasing).
-inline std::vector<ZoneSample> row_profile(const Mesh& mesh, const Body& body, int j, Coordinate c) {
+inline std::vector<ZoneSample> row_profile(const Simulation& simulation, const Body& body, int j, Coordinate c) {
+  const Mesh& mesh = simulation.mesh();
   const PatchShape shape = patch_shape(mesh, body);
   std::vector<ZoneSample> row;
-  for (int i = 0; i < shape.zones_i; ++i) row.push_back(sample_zone(mesh, body.zone_begin + j * shape.zones_i + i, c));
+  for (int i = 0; i < shape.zones_i; ++i) row.push_back(sample_zone(simulation, body.zone_begin + j * shape.zones_i + i, c));
   return row;
 }
 
 // All zones of a body, sorted by position.
-inline std::vector<ZoneSample> body_profile(const Mesh& mesh, const Body& body, Coordinate c) {
+inline std::vector<ZoneSample> body_profile(const Simulation& simulation, const Body& body, Coordinate c) {
   std::vector<ZoneSample> all;
-  for (Index z = body.zone_begin; z < body.zone_end; ++z) all.push_back(sample_zone(mesh, z, c));
+  for (Index z = body.zone_begin; z < body.zone_end; ++z) all.push_back(sample_zone(simulation, z, c));
   std::sort(all.begin(), all.end(), [](const ZoneSample& a, const ZoneSample& b) { return a.position < b.position; });
   return all;
 }
@@ -289,13 +291,14 @@ struct ShockSurvey {
 };
 
 // `level(row)` gives the density level that marks the shock on a row.
-inline ShockSurvey survey_shock(const Mesh& mesh, const Body& body, Coordinate c, double exact,
+inline ShockSurvey survey_shock(const Simulation& simulation, const Body& body, Coordinate c, double exact,
                                 const std::function<double(const std::vector<ZoneSample>&)>& level) {
+  const Mesh& mesh = simulation.mesh();
   ShockSurvey s;
   const PatchShape shape = patch_shape(mesh, body);
   int found = 0;
   for (int j = 0; j < shape.zones_j; ++j) {
-    const auto row = row_profile(mesh, body, j, c);
+    const auto row = row_profile(simulation, body, j, c);
     const Front f = front_from_outside(row, level(row));
     s.positions.push_back(f.position);
     if (!f.found()) { s.all_found = false; continue; }
@@ -320,11 +323,12 @@ inline double peak_density(const std::vector<ZoneSample>& row) {
 // L1 norm of (density - exact density) over the rows of a strip, per unit length across: the sum
 // over zones of |rho_z - mean of exact over the zone's extent| times the zone's share of the row
 // length, averaged over the rows.
-inline double density_l1_error(const Mesh& mesh, const Body& body, const ExactProfile& exact) {
+inline double density_l1_error(const Simulation& simulation, const Body& body, const ExactProfile& exact) {
+  const Mesh& mesh = simulation.mesh();
   const PatchShape shape = patch_shape(mesh, body);
   double sum = 0.0;
   for (int j = 0; j < shape.zones_j; ++j) {
-    for (const ZoneSample& s : row_profile(mesh, body, j, Coordinate::first_axis)) {
+    for (const ZoneSample& s : row_profile(simulation, body, j, Coordinate::first_axis)) {
       sum += std::abs(s.density - exact.mean(exact.density, s.low, s.high)) * s.width();
     }
   }

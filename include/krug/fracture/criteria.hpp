@@ -31,7 +31,7 @@
 
 namespace krug::fracture {
 
-// What made a zone damaged (ZoneFields::damage_criterion): one of criteria (1), or a damage law's D >= 1.
+// What made a zone damaged (FractureZoneFields::damage_criterion): one of criteria (1), or a damage law's D >= 1.
 enum class Criterion : std::uint8_t {
   none = 0,
   elongation,

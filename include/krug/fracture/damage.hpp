@@ -16,6 +16,7 @@
 #include "krug/fracture/failure_law.hpp"
 #include "krug/fracture/point_state.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 
 namespace krug::fracture {
 
@@ -65,30 +66,35 @@ inline bool stretches_below(const Mesh& mesh, Index z, bool axisymmetric, double
   return 6.0 * volume * initial_area < bound * area * sixfold_volume;
 }
 
-// Puts zone z into the damaged state at time `now`, recording `why`.
-void damage_zone(ZoneFields& zones, Index z, Criterion why, double now);
+// Puts zone z into the damaged state at time `now`, recording `why`: writes its fracture fields, zeroes
+// its deviatoric stress and hourglass state and keeps only compressive pressure.
+void damage_zone(ZoneState& state, Index z, Criterion why, double now);
 
 // The temperature of a material without one (NaN: a law's thermal term is off).
 struct NoTemperature {
   double operator()(Index /*zone*/) const { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
-// Damages the zones of [zone_begin, zone_end) that `law` fails at time `now`; returns how many.
+// Damages the zones of [zone_begin, zone_end) that `law` fails at time `now`; returns how many. Reads
+// the mesh and the hydro and strength state; writes `state.fracture` (and damage_zone's fields).
 // `time_step` is the step just taken (dt^{n+1/2}, over which the plastic strain grew);
 // `temperature(z)` gives zone z's temperature (K) when the law reads one.
 template <class Law, class Temperature = NoTemperature>
-long damage_zones(Mesh& mesh, Index zone_begin, Index zone_end, const Law& law, GeometryKind geometry, double now,
-                  double time_step = 0.0, Temperature&& temperature = {}) {
+long damage_zones(const Mesh& mesh, ZoneState& state, Index zone_begin, Index zone_end, const Law& law,
+                  GeometryKind geometry, double now, double time_step = 0.0, Temperature&& temperature = {}) {
   constexpr unsigned needs = Law::inputs;
   const bool axisymmetric = geometry == GeometryKind::axisymmetric;
-  ZoneFields& zones = mesh.zones;
+  const ZoneFields& zones = mesh.zones;
+  [[maybe_unused]] const HydroZoneFields& hydro = state.hydro;
+  [[maybe_unused]] const StrengthZoneFields& strength = state.strength;
+  FractureZoneFields& record = state.fracture;
   long damaged = 0;
   double stretch_limit = std::numeric_limits<double>::infinity();
   bool stress_read = true;
   if constexpr ((needs & input::stretches) != 0) stretch_limit = stretch_bound(law);
   if constexpr ((needs & input::principal_stress) != 0) stress_read = reads_principal_stress(law);
   for (Index z = zone_begin; z < zone_end; ++z) {
-    if (!zones.active[z] || zones.damaged[z]) continue;
+    if (!zones.active[z] || record.damaged[z]) continue;
     PointState point;
     if constexpr ((needs & input::stretches) != 0) {
       // Below the law's stretch bound the stretches cannot fire and stay at the identity (which fires
@@ -100,27 +106,27 @@ long damage_zones(Mesh& mesh, Index zone_begin, Index zone_end, const Law& law, 
     }
     if constexpr ((needs & input::principal_stress) != 0) {
       if (stress_read) {
-        point.stress = principal_stress(zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z],
-                                        zones.deviator_zz[z], zones.pressure[z]);
+        point.stress = principal_stress(strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z],
+                                        strength.deviator_zz[z], hydro.pressure[z]);
       }
     }
     if constexpr ((needs & input::specific_energy) != 0) point.specific_energy = zones.specific_energy[z];
-    if constexpr ((needs & input::pressure) != 0) point.pressure = zones.pressure[z];
+    if constexpr ((needs & input::pressure) != 0) point.pressure = hydro.pressure[z];
     if constexpr ((needs & input::equivalent_stress) != 0) {
-      const double sxx = zones.deviator_xx[z], syy = zones.deviator_yy[z], sxy = zones.deviator_xy[z],
-                   szz = zones.deviator_zz[z];
+      const double sxx = strength.deviator_xx[z], syy = strength.deviator_yy[z], sxy = strength.deviator_xy[z],
+                   szz = strength.deviator_zz[z];
       point.equivalent_stress = std::sqrt(1.5 * (sxx * sxx + syy * syy + szz * szz + 2.0 * sxy * sxy));
     }
     if constexpr ((needs & input::plastic_strain) != 0) {
-      const double strain = zones.plastic_strain[z];
-      point.plastic_strain_increment = std::max(strain - zones.damage_plastic_strain[z], 0.0);
+      const double strain = strength.plastic_strain[z];
+      point.plastic_strain_increment = std::max(strain - record.damage_plastic_strain[z], 0.0);
       point.plastic_strain_rate = time_step > 0.0 ? point.plastic_strain_increment / time_step : 0.0;
-      zones.damage_plastic_strain[z] = strain;
+      record.damage_plastic_strain[z] = strain;
     }
     if constexpr ((needs & input::temperature) != 0) point.temperature = temperature(z);
-    const Criterion fired = test(law, point, zones.damage[z]);
+    const Criterion fired = test(law, point, record.damage[z]);
     if (fired == Criterion::none) continue;
-    damage_zone(zones, z, fired, now);
+    damage_zone(state, z, fired, now);
     ++damaged;
   }
   return damaged;

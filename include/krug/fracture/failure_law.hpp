@@ -8,7 +8,7 @@
 //   - `double loosening`, the chi_* of the damaged state it leads to, and `bool any() const` (enabled);
 //   - a free function `Criterion test(const Law&, const PointState&, double& damage)`: the criterion
 //     that fired (Criterion::none if the zone stays intact), updating the zone's damage variable
-//     (ZoneFields::damage) if the law has one;
+//     (FractureZoneFields::damage) if the law has one;
 //   - `parameters(std::type_identity<Law>)`, its scenario parameters (krug/core/parameters.hpp).
 // The driver (damage.hpp) dispatches once per body (std::visit outside the zone loop) and gathers
 // only the inputs the law names; a failed zone takes the same damaged state whatever the law.

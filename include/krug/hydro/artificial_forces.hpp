@@ -22,11 +22,12 @@ namespace krug {
 namespace detail {
 
 // Scalar viscosity: Wilkins' q from the volumetric strain rate div u = (dV/dt)/V, compression only,
-// added to the batch's pressure; writes zones.viscous_speed and adds its dissipation q (-dV/dt) to
+// added to the batch's pressure; writes hydro.viscous_speed and adds its dissipation q (-dV/dt) to
 // `viscous_power` in zone order (the rate of work the edge model books as its dampers' dissipation).
 template <GeometryKind G>
-[[gnu::noinline]] inline void batch_scalar_viscosity(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
-                                                          const ForceSettings settings, double& viscous_power) {
+[[gnu::noinline]] inline void batch_scalar_viscosity(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
+                                                          HydroZoneFields& hydro, const ForceSettings settings,
+                                                          double& viscous_power) {
   double power = viscous_power;
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
@@ -48,12 +49,12 @@ template <GeometryKind G>
     if (divergence < 0.0) {
       const double length = quad::smallest_altitude(x, area);
       const double speed = settings.cq_s * length * -divergence;
-      const double q = rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * zones.sound_speed[z]);
+      const double q = rho * length * -divergence * (settings.cq_s * length * -divergence + settings.cl * hydro.sound_speed[z]);
       batch.pressure[i] += q;
-      zones.viscous_speed[z] = 2.0 * speed;
+      hydro.viscous_speed[z] = 2.0 * speed;
       power += q * -volume_rate;
     } else {
-      zones.viscous_speed[z] = 0.0;
+      hydro.viscous_speed[z] = 0.0;
     }
   }
   viscous_power = power;
@@ -70,13 +71,13 @@ template <GeometryKind G>
 // the origin) every dp_p is zero.
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
-                                                         const ForceSettings settings) {
+                                                         const HydroZoneFields& hydro, const ForceSettings settings) {
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
     if (!zones.active[z]) continue;
     const quad::Corners x = batch.corners(i);
     const double rho = zones.density[z];
-    const double stiffness = settings.subzonal * zones.sound_speed[z] * zones.sound_speed[z];
+    const double stiffness = settings.subzonal * hydro.sound_speed[z] * hydro.sound_speed[z];
     const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
     const Vec2 middle = quad::centre(x);
     std::array<Vec2, 4> force{};
@@ -109,16 +110,16 @@ template <GeometryKind G>
 }
 
 // Edge viscosity (CSW 1998) on the compressing edges, added to the batch's forces; writes
-// zones.viscous_speed and adds each damper's dissipation to `viscous_power` in zone and edge order.
+// hydro.viscous_speed and adds each damper's dissipation to `viscous_power` in zone and edge order.
 template <GeometryKind G>
-[[gnu::noinline]] inline void batch_edge_viscosity(ZoneBatch& batch, int count, Index first, Mesh& mesh,
-                                                        Index zone_begin, const ZoneForceParams& params,
-                                                        const ForceSettings settings,
+[[gnu::noinline]] inline void batch_edge_viscosity(ZoneBatch& batch, int count, Index first, const Mesh& mesh,
+                                                        HydroZoneFields& hydro, Index zone_begin,
+                                                        const ZoneForceParams& params, const ForceSettings settings,
                                                         AreaWeightedArrays area_weighted_arrays,
                                                         SharedEdgeLimiters shared_limiters, double& viscous_power) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const bool area_weighted = axisymmetric && settings.area_weighted;  // a constant false in planar code
-  ZoneFields& zones = mesh.zones;
+  const ZoneFields& zones = mesh.zones;
   double power = viscous_power;  // a local running sum (in a register), added to in the same order
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
@@ -126,14 +127,14 @@ template <GeometryKind G>
     bool expanding = true;  // no edge compressing: no viscosity
     for (int k = 0; k < 4; ++k) expanding = expanding && batch.edge_compression[k][i] >= 0.0;
     if (expanding) {
-      zones.viscous_speed[z] = 0.0;
+      hydro.viscous_speed[z] = 0.0;
       continue;
     }
     const ZoneCorners& n = zones.corners[z];
     const quad::Corners x = batch.corners(i);
     const std::array<Vec2, 4> u = batch.velocities(i);
     const double rho = zones.density[z];
-    const double c = zones.sound_speed[z];
+    const double c = hydro.sound_speed[z];
     const Vec2 centre = quad::centre(x);
     double viscous_speed = 0.0;
 #pragma GCC unroll 4  // constant corner indices: the corner arrays stay in registers
@@ -176,15 +177,17 @@ template <GeometryKind G>
       power += dissipation;
       viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
     }
-    zones.viscous_speed[z] = viscous_speed;
+    hydro.viscous_speed[z] = viscous_speed;
   }
   viscous_power = power;
 }
 
 // Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
-// rates, the stiffness state (zones.hourglass_x/y, intact zones only), and the batch's hourglass power.
+// rates, the stiffness state (hourglass.hourglass_x/y, intact zones only), and the batch's hourglass power.
 template <GeometryKind G>
-[[gnu::noinline]] inline void batch_hourglass_forces(ZoneBatch& batch, int count, Index first, ZoneFields& zones,
+[[gnu::noinline]] inline void batch_hourglass_forces(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
+                                                          const HydroZoneFields& hydro, HourglassZoneFields& hourglass,
+                                                          const FractureZoneFields& fracture,
                                                           const ZoneForceParams& params, const ForceSettings settings) {
   for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
@@ -206,32 +209,32 @@ template <GeometryKind G>
   if (settings.hourglass_stiff) {
     for (int i = 0; i < count; ++i) {
       const Index z = first + i;
-      if (!zones.active[z] || zones.damaged[z]) continue;  // damaged: no shear stiffness
+      if (!zones.active[z] || fracture.damaged[z]) continue;  // damaged: no shear stiffness
       const double area = batch.area[i];
       increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
       increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
-      double qx = zones.hourglass_x[z] + increment_x[i];
-      double qy = zones.hourglass_y[z] + increment_y[i];
+      double qx = hourglass.hourglass_x[z] + increment_x[i];
+      double qy = hourglass.hourglass_y[z] + increment_y[i];
       if (settings.hourglass_bound > 0.0) {
         const double bound = settings.hourglass_bound * std::sqrt(batch.bb[i]);
         const double size = std::sqrt(qx * qx + qy * qy);
         if (size > bound) {
           qx *= bound / size;
           qy *= bound / size;
-          increment_x[i] = qx - zones.hourglass_x[z];
-          increment_y[i] = qy - zones.hourglass_y[z];
+          increment_x[i] = qx - hourglass.hourglass_x[z];
+          increment_y[i] = qy - hourglass.hourglass_y[z];
         }
       }
-      zones.hourglass_x[z] = qx;
-      zones.hourglass_y[z] = qy;
+      hourglass.hourglass_x[z] = qx;
+      hourglass.hourglass_y[z] = qy;
     }
   }
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
-    const double viscous = params.hourglass.viscous * zones.density[z] * zones.sound_speed[z] * std::sqrt(batch.area[i]);
+    const double viscous = params.hourglass.viscous * zones.density[z] * hydro.sound_speed[z] * std::sqrt(batch.area[i]);
     const double scale = G == GeometryKind::axisymmetric && !settings.area_weighted ? batch.mean_radius[i] : 1.0;
-    const Vec2 generalised{scale * (viscous * batch.rate_x[i] + zones.hourglass_x[z]),
-                           scale * (viscous * batch.rate_y[i] + zones.hourglass_y[z])};
+    const Vec2 generalised{scale * (viscous * batch.rate_x[i] + hourglass.hourglass_x[z]),
+                           scale * (viscous * batch.rate_y[i] + hourglass.hourglass_y[z])};
     for (int p = 0; p < 4; ++p) {
       batch.fx[p][i] -= batch.gamma[p][i] * generalised.x;
       batch.fy[p][i] -= batch.gamma[p][i] * generalised.y;

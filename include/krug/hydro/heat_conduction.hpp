@@ -16,14 +16,15 @@
 
 #include "krug/core/geometry_kind.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 
 namespace krug {
 
 // Adds to energy_change[z] (J per radian or per m; sized to the mesh's zones) the heat zone z gains
 // over a step of dt from its neighbours in [zone_begin, zone_end). The mesh's edge neighbours must be
-// built (build_edge_continuations).
-inline void exchange_heat(const Mesh& mesh, Index zone_begin, Index zone_end, double coefficient, double dt,
-                          GeometryKind geometry, std::vector<double>& energy_change) {
+// built (build_edge_continuations). Reads the mesh and hydro.sound_speed.
+inline void exchange_heat(const Mesh& mesh, const HydroZoneFields& hydro, Index zone_begin, Index zone_end,
+                          double coefficient, double dt, GeometryKind geometry, std::vector<double>& energy_change) {
   const ZoneFields& zones = mesh.zones;
   const NodeFields& nodes = mesh.nodes;
   const bool axisymmetric = geometry == GeometryKind::axisymmetric;
@@ -55,7 +56,7 @@ inline void exchange_heat(const Mesh& mesh, Index zone_begin, Index zone_end, do
       if (!(distance > 0.0) || !(face > 0.0)) continue;
       const double closing = -dot(velocity[io] - velocity[iz], d) / distance;
       const double rho = 0.5 * (zones.density[z] + zones.density[o]);
-      const double c = 0.5 * (zones.sound_speed[z] + zones.sound_speed[o]);
+      const double c = 0.5 * (hydro.sound_speed[z] + hydro.sound_speed[o]);
       const double conductance = coefficient * rho * (c + std::max(closing, 0.0)) * face;
       faces.push_back({z, o, conductance});
       total[static_cast<std::size_t>(z - zone_begin)] += conductance;

@@ -8,6 +8,7 @@
 
 #include "krug/core/geometry_kind.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/hydro/parameters.hpp"
 #include "krug/hydro/corner_batch.hpp"
 
@@ -162,10 +163,10 @@ struct ForceSettings {
   bool consistent_deviator = false;  // RZ control volume with strength: the r-weighted operator B_p
 };
 
-// Reads zones.pressure; writes the batch's dA/dx_p, area and pressure, and for the edge viscosity
+// Reads hydro.pressure; writes the batch's dA/dx_p, area and pressure, and for the edge viscosity
 // du . dx of every edge (< 0: compressing).
 template <ViscosityModel Visc>
-[[gnu::noinline]] inline void batch_geometry(ZoneBatch& batch, int count, Index first, const ZoneFields& zones) {
+[[gnu::noinline]] inline void batch_geometry(ZoneBatch& batch, int count, Index first, const HydroZoneFields& hydro) {
   for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
     const double area = quad::area(x);
@@ -175,7 +176,7 @@ template <ViscosityModel Visc>
       batch.by[p][i] = b[p].y;
     }
     batch.area[i] = area;
-    batch.pressure[i] = zones.pressure[first + i];
+    batch.pressure[i] = hydro.pressure[first + i];
     if constexpr (Visc == ViscosityModel::edge) {
       const std::array<Vec2, 4> u = batch.velocities(i);
       for (int k = 0; k < 4; ++k) {

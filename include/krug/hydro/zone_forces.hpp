@@ -26,15 +26,16 @@ namespace detail {
 // form, so that each has no branch. Area-weighted RZ form: also the control-volume forces (work_x/y)
 // and the area-weighted stress forces alone (planar_x/y).
 template <GeometryKind G, bool AreaWeighted, bool ConsistentDeviator = false>
-[[gnu::noinline]] inline void batch_stress_forces(ZoneBatch& batch, int count, Index first, const ZoneFields& zones) {
+[[gnu::noinline]] inline void batch_stress_forces(ZoneBatch& batch, int count, Index first,
+                                                     const StrengthZoneFields& strength) {
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
     const std::array<Vec2, 4> b = batch.area_gradient(i);
     const double pressure = batch.pressure[i];
-    const double sxx = zones.deviator_xx[z] - pressure;
-    const double syy = zones.deviator_yy[z] - pressure;
-    const double sxy = zones.deviator_xy[z];
-    const double stt = zones.deviator_zz[z] - pressure;
+    const double sxx = strength.deviator_xx[z] - pressure;
+    const double syy = strength.deviator_yy[z] - pressure;
+    const double sxy = strength.deviator_xy[z];
+    const double stt = strength.deviator_zz[z] - pressure;
     const double area = batch.area[i];
     if constexpr (G == GeometryKind::axisymmetric) {
       const quad::Corners x = batch.corners(i);
@@ -80,20 +81,20 @@ template <GeometryKind G, bool AreaWeighted, bool ConsistentDeviator = false>
   }
 }
 
-// Stores the batch's corner forces in zones.corner_force (+0 for an inactive zone; the nodes add them
+// Stores the batch's corner forces in hydro.corner_force (+0 for an inactive zone; the nodes add them
 // up in zone order, `sum_corner_forces`) and adds the active zones' hourglass power, in zone order.
 // Area-weighted RZ form: the node gets s_p times the area-weighted force, and the work correction
 // turns that into the zone's own control-volume stress work plus its booked viscous and hourglass work.
 template <GeometryKind G>
-[[gnu::noinline]] inline void store_corner_forces(const ZoneBatch& batch, int count, Index first, ZoneFields& zones,
-                                                       const ForceSettings settings,
+[[gnu::noinline]] inline void store_corner_forces(const ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
+                                                       HydroZoneFields& hydro, const ForceSettings settings,
                                                        AreaWeightedArrays area_weighted_arrays,
                                                        double& hourglass_power) {
   const bool area_weighted = G == GeometryKind::axisymmetric && settings.area_weighted;
   double power = hourglass_power;  // a local running sum, added to in the same order
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
-    double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+    double* corner = &hydro.corner_force[8 * static_cast<std::size_t>(z)];
     if (!zones.active[z]) {
       std::fill(corner, corner + 8, 0.0);
       continue;
@@ -123,15 +124,18 @@ template <GeometryKind G>
 
 }  // namespace detail
 
-// Stores the corner forces of the zones in [zone_begin, zone_end) in zones.corner_force (zero for an
-// inactive zone) and the viscous signal speed in zones.viscous_speed; `sum_corner_forces` then adds
+// Stores the corner forces of the zones in [zone_begin, zone_end) in hydro.corner_force (zero for an
+// inactive zone) and the viscous signal speed in hydro.viscous_speed; `sum_corner_forces` then adds
 // them up at the nodes. Velocities are read from nodes.u/v (t^{n-1/2}). Writes nothing outside its
 // zones, so that blocks of zones can be computed on different threads. Area-weighted RZ form only: the
 // stored forces are the nodes' (s_p times the area-weighted ones), and `area_weighted_arrays.work_correction`
 // receives what turns their work into the zone's own (control-volume) stress work plus its booked
-// viscous and hourglass work.
+// viscous and hourglass work. Reads the mesh, hydro.pressure and sound_speed, `strength` and
+// fracture.damaged; writes hydro.corner_force and viscous_speed and `hourglass`.
 template <GeometryKind G, ViscosityModel Visc>
-ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_end, const ZoneForceParams& params,
+ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, const StrengthZoneFields& strength,
+                                      HourglassZoneFields& hourglass, const FractureZoneFields& fracture,
+                                      Index zone_begin, Index zone_end, const ZoneForceParams& params,
                                       AreaWeightedArrays area_weighted_arrays = {},
                                       SharedEdgeLimiters shared_limiters = {}) {
   detail::ForceSettings settings;
@@ -146,29 +150,33 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
   // Subzonal pressures: bodies without strength, compatible forms only.
   settings.consistent_deviator = G == GeometryKind::axisymmetric && !settings.area_weighted && params.shear_modulus != 0.0;
   settings.subzonal = params.shear_modulus == 0.0 && !settings.area_weighted ? params.hourglass.subzonal_pressure : 0.0;
-  ZoneFields& zones = mesh.zones;
+  const ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
 
   for (Index first = zone_begin; first < zone_end; first += detail::zone_batch) {
     const int count = static_cast<int>(std::min<Index>(detail::zone_batch, zone_end - first));
     batch.gather(mesh, first, count);
-    detail::batch_geometry<Visc>(batch, count, first, zones);
-    if constexpr (Visc == ViscosityModel::scalar) detail::batch_scalar_viscosity<G>(batch, count, first, zones, settings, power.viscous);
-    if (settings.area_weighted) {
-      detail::batch_stress_forces<G, true>(batch, count, first, zones);
-    } else if (settings.consistent_deviator) {
-      detail::batch_stress_forces<G, false, true>(batch, count, first, zones);
-    } else {
-      detail::batch_stress_forces<G, false>(batch, count, first, zones);
+    detail::batch_geometry<Visc>(batch, count, first, hydro);
+    if constexpr (Visc == ViscosityModel::scalar) {
+      detail::batch_scalar_viscosity<G>(batch, count, first, zones, hydro, settings, power.viscous);
     }
-    if (settings.subzonal > 0.0) detail::batch_subzonal_pressure<G>(batch, count, first, zones, settings);
+    if (settings.area_weighted) {
+      detail::batch_stress_forces<G, true>(batch, count, first, strength);
+    } else if (settings.consistent_deviator) {
+      detail::batch_stress_forces<G, false, true>(batch, count, first, strength);
+    } else {
+      detail::batch_stress_forces<G, false>(batch, count, first, strength);
+    }
+    if (settings.subzonal > 0.0) detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
     if constexpr (Visc == ViscosityModel::edge) {
-      detail::batch_edge_viscosity<G>(batch, count, first, mesh, zone_begin, params, settings, area_weighted_arrays,
+      detail::batch_edge_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings, area_weighted_arrays,
                                       shared_limiters, power.viscous);
     }
-    if (settings.hourglass_on) detail::batch_hourglass_forces<G>(batch, count, first, zones, params, settings);
-    detail::store_corner_forces<G>(batch, count, first, zones, settings, area_weighted_arrays, power.hourglass);
+    if (settings.hourglass_on) {
+      detail::batch_hourglass_forces<G>(batch, count, first, zones, hydro, hourglass, fracture, params, settings);
+    }
+    detail::store_corner_forces<G>(batch, count, first, zones, hydro, settings, area_weighted_arrays, power.hourglass);
   }
   return power;
 }
@@ -177,9 +185,9 @@ ArtificialPower compute_corner_forces(Mesh& mesh, Index zone_begin, Index zone_e
 // order (`corners` lists each node's corner slots 4 z + p, sorted by zone). An inactive zone's corner
 // forces are +0 (compute_corner_forces), and adding +0 leaves a sum started at +0 bitwise unchanged, so
 // no test of `active` is needed.
-inline void sum_corner_forces(Mesh& mesh, const NodeCorners& corners, Index node_begin, Index node_end) {
-  NodeFields& nodes = mesh.nodes;
-  const double* corner_force = mesh.zones.corner_force.data();
+inline void sum_corner_forces(NodeFields& nodes, const HydroZoneFields& hydro, const NodeCorners& corners,
+                              Index node_begin, Index node_end) {
+  const double* corner_force = hydro.corner_force.data();
   for (Index node = node_begin; node < node_end; ++node) {
     double fx = 0.0, fy = 0.0;
     for (Index k = corners.offset[node]; k < corners.offset[node + 1]; ++k) {

@@ -11,6 +11,7 @@
 #include "krug/core/geometry_kind.hpp"
 #include "krug/material/strength.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/hydro/corner_batch.hpp"
 
 namespace krug {
@@ -82,14 +83,18 @@ struct UpdateBatch : CornerBatch<update_batch> {  // corner positions x^{n+1}, v
 // Updates the zones of [zone_begin, zone_end); writes nothing outside them, so that blocks of zones can
 // be updated on different threads. `work_correction` (8 per zone, area-weighted RZ form only, else
 // null) is added to the corner forces' work: it makes the work the zone's own control-volume stress work.
+// Reads the positions and velocities, hydro.corner_force and viscous_speed and fracture.damaged; writes
+// the zones' geometry, density and specific energy, the rest of `hydro` and (with strength) `strength`.
 template <GeometryKind G, class EquationOfState, class StrengthModel>
-ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, const EquationOfState& material_eos,
+ZoneUpdateResult update_zones(Mesh& mesh, HydroZoneFields& hydro, StrengthZoneFields& strength,
+                              const FractureZoneFields& fracture, Index zone_begin, Index zone_end,
+                              const EquationOfState& material_eos,
                               const StrengthModel& material_strength, const ZoneUpdateParams& params,
                               const double* work_correction = nullptr) {
   // Local copies: the compiler then knows that the zone stores do not change the material
   // parameters, and keeps what depends only on them (such as the EOS's compression limit) out of the loop.
   const EquationOfState eos = material_eos;
-  const StrengthModel strength = material_strength;
+  const StrengthModel strength_model = material_strength;
   constexpr bool has_strength = !std::is_same_v<StrengthModel, NoStrength>;
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   const NodeFields& nodes = mesh.nodes;
@@ -128,7 +133,7 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       const double volume = has_strength ? batch.volume[i] : axisymmetric ? quad::axisymmetric_volume(x) : area;
 
       // Compatible energy: the work of the corner forces over the step at the mid-step velocity.
-      const double* corner = &zones.corner_force[8 * static_cast<std::size_t>(z)];
+      const double* corner = &hydro.corner_force[8 * static_cast<std::size_t>(z)];
       const auto work_of = [&](auto force) {  // force(j): component j of the 8 corner values
         double sum = 0.0;
         for (int p = 0; p < 4; ++p) {
@@ -150,25 +155,26 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       const double old_volume = zones.volume[z];
       const double density = zones.mass[z] / volume;
 
-      const bool damaged = zones.damaged[z] != 0;
+      const bool damaged = fracture.damaged[z] != 0;
       if constexpr (has_strength) {
         if (!damaged) {  // a damaged zone keeps s = 0
           // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
           const StrainRate rate{batch.rate_xx[i], batch.rate_yy[i], batch.rate_xy[i], batch.rate_zz[i]};
-          const Deviator previous{zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z]};
+          const Deviator previous{strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z],
+                                  strength.deviator_zz[z]};
           PlasticState state;
-          state.plastic_strain = zones.plastic_strain[z];
+          state.plastic_strain = strength.plastic_strain[z];
           if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
             state.strain_rate = equivalent_strain_rate(rate);
-            state.temperature = strength.temperature_from_energy(energy);
+            state.temperature = strength_model.temperature_from_energy(energy);
           }
           const PlasticReturn plastic =
-              update_deviator(strength, previous, rate, batch.spin[i], params.time_step_next, state);
-          zones.deviator_xx[z] = plastic.deviator.xx;
-          zones.deviator_yy[z] = plastic.deviator.yy;
-          zones.deviator_xy[z] = plastic.deviator.xy;
-          zones.deviator_zz[z] = plastic.deviator.zz;
-          zones.plastic_strain[z] += plastic.plastic_strain_increment;
+              update_deviator(strength_model, previous, rate, batch.spin[i], params.time_step_next, state);
+          strength.deviator_xx[z] = plastic.deviator.xx;
+          strength.deviator_yy[z] = plastic.deviator.yy;
+          strength.deviator_xy[z] = plastic.deviator.xy;
+          strength.deviator_zz[z] = plastic.deviator.zz;
+          strength.plastic_strain[z] += plastic.plastic_strain_increment;
           result_plastic_work += plastic.plastic_work_density * 0.5 * (volume + old_volume);
         }
       }
@@ -184,20 +190,20 @@ ZoneUpdateResult update_zones(Mesh& mesh, Index zone_begin, Index zone_end, cons
       zones.volume[z] = volume;
       zones.density[z] = density;
       zones.specific_energy[z] = energy;
-      zones.pressure[z] = pressure;
-      zones.sound_speed[z] = sound_speed;
-      zones.volume_change[z] = std::abs(volume - old_volume) / old_volume;
+      hydro.pressure[z] = pressure;
+      hydro.sound_speed[z] = sound_speed;
+      hydro.volume_change[z] = std::abs(volume - old_volume) / old_volume;
       result.internal_energy += zones.mass[z] * energy;
 
       // Stable step: CFL with the viscous signal speed b (Wilkins), and the |dV/V| limit.
       const double length = quad::stable_length(x, area);
-      const double b = zones.viscous_speed[z];
+      const double b = hydro.viscous_speed[z];
       const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
       double dt = signal > 0.0 ? params.cfl * length / signal : std::numeric_limits<double>::infinity();
-      if (zones.volume_change[z] > 0.0) {
-        dt = std::min(dt, params.max_volume_change * params.time_step_next / zones.volume_change[z]);
+      if (hydro.volume_change[z] > 0.0) {
+        dt = std::min(dt, params.max_volume_change * params.time_step_next / hydro.volume_change[z]);
       }
-      zones.stable_time_step[z] = dt;
+      hydro.stable_time_step[z] = dt;
       if (dt < result.stable_time_step) {
         result.stable_time_step = dt;
         result.controlling_zone = z;

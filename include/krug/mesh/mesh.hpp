@@ -6,6 +6,11 @@
 // Time levels (docs/theory.md §2): positions, density, stress and energy live at t^n; velocities
 // at half steps. Extensive quantities (mass, volume, force) are per radian in axisymmetric geometry
 // and per unit thickness in planar geometry.
+//
+// ZoneFields holds what describes a zone itself: its connectivity and neighbours, whether it is still
+// on the grid, its mass, geometry, density and specific energy (the state a setup gives and the hydro
+// update carries). The packages' per-zone state (EOS results, stress, hourglass, damage) is grouped
+// in zone_state.hpp and lives in the run state beside the mesh.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -41,17 +46,8 @@ struct ZoneFields {
   std::vector<double> mass;                      // fixed (kg per radian or per m)
   std::vector<double> density;                   // kg/m^3 at t^n
   std::vector<double> specific_energy;           // J/kg
-  std::vector<double> pressure;                  // Pa, from the EOS (artificial viscosity not included)
-  std::vector<double> sound_speed;               // m/s, stress-wave speed used by the time step
   std::vector<double> volume;                    // m^3 per radian (axisymmetric) or m^2 (planar)
   std::vector<double> area;                      // planar area in the computational plane (m^2)
-  std::vector<double> viscous_speed;             // m/s, the artificial-viscosity signal speed of the last step
-  std::vector<double> volume_change;             // |dV/V| over the last step
-  std::vector<double> corner_force;              // 8 per zone: force on corner p = (2p, 2p+1), at t^n
-  std::vector<double> deviator_xx, deviator_yy;  // deviatoric stress (Pa)
-  std::vector<double> deviator_xy, deviator_zz;  // zz: hoop (axisymmetric) or out-of-plane (planar)
-  std::vector<double> plastic_strain;            // equivalent plastic strain
-  std::vector<double> hourglass_x, hourglass_y;  // Flanagan-Belytschko stiffness generalised forces
   // Nodes continuing each edge through the neighbouring zones (for the viscosity limiter): the edge
   // (p, p+1) continues backwards as (before[p], p) and forwards as (p+1, after[p]); -1 at a boundary.
   std::vector<ZoneCorners> edge_before, edge_after;
@@ -59,14 +55,7 @@ struct ZoneFields {
   bool neighbours_built = false;                 // set by build_edge_continuations, cleared by resize
   std::vector<double> corner_mass;               // 4 per zone: the zone's share of each corner node's mass
   std::vector<double> subzone_mass;              // 4 per zone: the mass of each corner's median-mesh region
-  // Fracture (docs/theory.md §2 step 6): permanent damage, when and why it started.
-  std::vector<std::uint8_t> damaged;             // 0 intact, 1 damaged
-  std::vector<double> damage_time;               // s; -1 while intact
-  std::vector<std::uint8_t> damage_criterion;    // fracture::Criterion that fired
-  std::vector<double> damage;                    // a damage law's D (Johnson-Cook: sum d eps_p / eps_f); 0 otherwise
-  std::vector<double> damage_plastic_strain;     // the plastic strain already counted in `damage`
   std::vector<double> initial_altitude;          // smallest altitude of the initial shape (m)
-  std::vector<double> stable_time_step;          // the zone's own stable step from the last update (s)
 
   Index size() const { return static_cast<Index>(corners.size()); }
   void resize(Index n);
@@ -102,39 +91,21 @@ void for_each_zone_field(Zones& z, F&& f) {
   f("mass", z.mass, 1, 0.0);
   f("density", z.density, 1, 0.0);
   f("specific_energy", z.specific_energy, 1, 0.0);
-  f("pressure", z.pressure, 1, 0.0);
-  f("sound_speed", z.sound_speed, 1, 0.0);
   f("volume", z.volume, 1, 0.0);
   f("area", z.area, 1, 0.0);
-  f("viscous_speed", z.viscous_speed, 1, 0.0);
-  f("volume_change", z.volume_change, 1, 0.0);
-  f("corner_force", z.corner_force, 8, 0.0);
-  f("deviator_xx", z.deviator_xx, 1, 0.0);
-  f("deviator_yy", z.deviator_yy, 1, 0.0);
-  f("deviator_xy", z.deviator_xy, 1, 0.0);
-  f("deviator_zz", z.deviator_zz, 1, 0.0);
-  f("plastic_strain", z.plastic_strain, 1, 0.0);
-  f("hourglass_x", z.hourglass_x, 1, 0.0);
-  f("hourglass_y", z.hourglass_y, 1, 0.0);
   f("edge_before", z.edge_before, 1, none);
   f("edge_after", z.edge_after, 1, none);
   f("neighbour", z.neighbour, 1, none);
   f("corner_mass", z.corner_mass, 4, 0.0);
   f("subzone_mass", z.subzone_mass, 4, 0.0);
-  f("damaged", z.damaged, 1, std::uint8_t{0});
-  f("damage_time", z.damage_time, 1, -1.0);
-  f("damage_criterion", z.damage_criterion, 1, std::uint8_t{0});
-  f("damage", z.damage, 1, 0.0);
-  f("damage_plastic_strain", z.damage_plastic_strain, 1, 0.0);
   f("initial_altitude", z.initial_altitude, 1, 0.0);
-  f("stable_time_step", z.stable_time_step, 1, 0.0);
 }
 
 // A field added to NodeFields or ZoneFields without its registry line changes these sizes: the build
 // stops here (every member is a std::vector of 24 bytes, plus ZoneFields' neighbours_built flag).
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(NodeFields) == 14 * 24,
               "NodeFields changed: add the field to for_each_node_field");
-static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 32 * 24 + 8,
+static_assert(sizeof(std::vector<double>) != 24 || sizeof(ZoneFields) == 14 * 24 + 8,
               "ZoneFields changed: add the field to for_each_zone_field");
 
 struct Mesh {

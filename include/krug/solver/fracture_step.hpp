@@ -10,6 +10,7 @@
 #include "krug/fracture/failure_law.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/particles/particles.hpp"
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
@@ -29,10 +30,11 @@ struct FractureCounts {
 
 // Step 6: each body's failure law (laws[b], none where not fracture::enabled) on its intact zones at
 // t^{n+1} = `now`, the plastic strain having grown over `dt`; adds the newly damaged zones to
-// counts[b].damaged. Writes the zones' damage fields.
-void evaluate_failure_laws(Mesh& mesh, const std::vector<Body>& bodies, const std::vector<Material>& materials,
-                           const std::vector<fracture::FailureLaw>& laws, GeometryKind geometry, double now, double dt,
-                           std::vector<FractureCounts>& counts);
+// counts[b].damaged. Reads the mesh, the hydro and strength state; writes the fracture state (and,
+// for a zone that becomes damaged, fracture::damage_zone's stress, pressure and hourglass state).
+void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
+                           const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
+                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts);
 
 // Why a zone leaves the grid: fully fractured on a free surface (the paper's rule), damaged in the
 // interior (a documented deviation: f_i, an inverted corner, the time-step floor), or eroded.
@@ -45,7 +47,8 @@ struct Conversion {
 // Step 7's choice, the whole layer before any zone converts (one boundary layer a step): eroded
 // zones of bodies that ask for erosion, then the damaged zones of bodies with a failure law, in zone
 // order. held_x/held_y (per node) tell a free face from the axis, a symmetry plane or a held rim.
-std::vector<Conversion> choose_conversions(const Mesh& mesh, const std::vector<Body>& bodies,
+// Reads the mesh and the zones' damage, plastic strain and stable steps.
+std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& state, const std::vector<Body>& bodies,
                                            const std::vector<Material>& materials,
                                            const std::vector<fracture::FailureLaw>& laws,
                                            const FractureControls& controls, const std::vector<std::uint8_t>& held_x,

@@ -13,6 +13,7 @@
 #include "krug/hydro/zone_update.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
 
@@ -20,12 +21,12 @@ namespace krug {
 
 // A zone's pressure and stress-wave speed (bulk, plus 4 mu / 3 rho with a shear modulus mu) from the
 // EOS at its density and specific energy. Reads zones.density and specific_energy of zone z; writes its
-// pressure and sound_speed.
+// hydro.pressure and sound_speed.
 template <class Eos>
-void evaluate_eos(const Eos& eos, double mu, ZoneFields& zones, Index z) {
+void evaluate_eos(const Eos& eos, double mu, const ZoneFields& zones, HydroZoneFields& hydro, Index z) {
   const double rho = zones.density[z], e = zones.specific_energy[z];
-  zones.pressure[z] = eos.pressure(rho, e);
-  zones.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, zones.pressure[z]) + 4.0 * mu / (3.0 * rho), 0.0));
+  hydro.pressure[z] = eos.pressure(rho, e);
+  hydro.sound_speed[z] = std::sqrt(std::max(eos.sound_speed_squared(rho, e, hydro.pressure[z]) + 4.0 * mu / (3.0 * rho), 0.0));
 }
 
 // The CFL number of a body of this material: controls.cfl_fluid without strength, controls.cfl with it.
@@ -35,16 +36,18 @@ double cfl_number(const Material& material, const Controls& controls);
 ZoneForceParams zone_force_params(const Material& material, const Controls& controls, double previous_time_step);
 
 // Step 1 on the body's zones (compute_corner_forces): reads the mesh's positions, velocities at
-// t^{n-1/2} and zone states; writes the zones' corner forces, viscous speeds and hourglass state, the
-// limiters of `limiters` and the work corrections of `area_weighted`. Returns the artificial powers,
-// the blocks' added in block order.
-ArtificialPower body_corner_forces(Mesh& mesh, const Body& body, GeometryKind geometry, const ZoneForceParams& params,
-                                   int threads, AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters);
+// t^{n-1/2} and zones, and the zones' pressure, sound speed, stress and damage; writes their corner
+// forces and viscous speeds (`state.hydro`) and hourglass state (`state.hourglass`), the limiters of
+// `limiters` and the work corrections of `area_weighted`. Returns the artificial powers, the blocks'
+// added in block order.
+ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
+                                   const ZoneForceParams& params, int threads, AreaWeightedArrays area_weighted, SharedEdgeLimiters limiters);
 
 // Step 5 on the body's zones (update_zones with the material's EOS and strength model): reads the
 // positions at t^{n+1}, the velocities, the corner forces and `work_correction` (8 per zone, the
-// area-weighted RZ form only, else null); writes the zone states. One result per block, in block order.
-std::vector<ZoneUpdateResult> body_zone_update(Mesh& mesh, const Body& body, GeometryKind geometry,
+// area-weighted RZ form only, else null); writes the zones' geometry, density and energy, `state.hydro`
+// and `state.strength` (update_zones). One result per block, in block order.
+std::vector<ZoneUpdateResult> body_zone_update(Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
                                                const Material& material, const ZoneUpdateParams& params, int threads,
                                                const double* work_correction);
 

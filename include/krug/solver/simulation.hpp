@@ -13,6 +13,7 @@
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
 #include "krug/mesh/pieces.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/fracture_step.hpp"
@@ -22,10 +23,13 @@
 namespace krug {
 
 // Everything a run starts from. Zone density and specific energy and node velocity are set in
-// `mesh`; masses, volumes and pressures are derived by the Simulation.
+// `mesh`; masses, volumes and pressures are derived by the Simulation. `zone_state` is empty (zones
+// start intact and unstressed) or sized to the mesh's zones (ZoneState::resize) to start some zones
+// damaged or stressed; its pressures and wave speeds are derived.
 struct SimulationSetup {
   GeometryKind geometry = GeometryKind::planar;
   Mesh mesh;
+  ZoneState zone_state;
   std::vector<Material> materials;
   std::vector<Body> bodies;
   std::vector<NodeConstraint> constraints;               // held components (the axis in RZ is added by the Simulation)
@@ -39,8 +43,11 @@ struct SimulationSetup {
 
 
 // Everything that changes during a run: with the setup it came from, it restarts a run exactly.
+// The mesh holds the topology and geometry (with each zone's mass, density and specific energy), the
+// zone state the packages' per-zone fields (hydro, strength, hourglass, fracture; zone_state.hpp).
 struct SimulationState {
   Mesh mesh;
+  ZoneState zone_state;
   Particles particles;
   Ledger ledger;
   std::vector<FractureCounts> fracture_counts;
@@ -72,6 +79,9 @@ class Simulation {
   GeometryKind geometry() const { return geometry_; }
   const Mesh& mesh() const { return state_.mesh; }
   Mesh& mesh() { return state_.mesh; }
+  // The zones' physics state by package (hydro, strength, hourglass, fracture), indexed like the mesh's zones.
+  const ZoneState& zone_state() const { return state_.zone_state; }
+  ZoneState& zone_state() { return state_.zone_state; }
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<Material>& materials() const { return materials_; }
   const Controls& controls() const { return controls_; }
@@ -148,8 +158,8 @@ class Simulation {
   [[noreturn]] void fail(const std::string& what, Index zone) const;
 
   GeometryKind geometry_;
-  // The run state, the one record that checkpoints and restarts carry (its fields above: the mesh and
-  // its zone fields, particles, ledger, per-body records, the clock).
+  // The run state, the one record that checkpoints and restarts carry (its fields above: the mesh, the
+  // zone state, particles, ledger, per-body records, the clock).
   SimulationState state_;
   std::vector<Material> materials_;
   std::vector<Body> bodies_;

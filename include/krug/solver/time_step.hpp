@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "krug/mesh/mesh.hpp"
+#include "krug/mesh/zone_state.hpp"
 #include "krug/particles/particles.hpp"
 #include "krug/solver/controls.hpp"
 
@@ -31,9 +32,9 @@ struct StableStep {
   Index zone = -1;   // the zone that sets it
 };
 
-// The smallest stable step of the active zones (zones.stable_time_step) and the first zone with it;
+// The smallest stable step of the active zones (hydro.stable_time_step) and the first zone with it;
 // +infinity and -1 when no zone is active.
-StableStep smallest_stable_step(const ZoneFields& zones);
+StableStep smallest_stable_step(const ZoneFields& zones, const HydroZoneFields& hydro);
 
 TimeStepChoice limit_time_step(double stable, double previous, const Controls& controls, const Particles& particles);
 
