@@ -56,9 +56,9 @@ Simulation pulled_rod(double speed) {
 }
 
 double largest_principal_stress(const Simulation& sim, Index z) {
-  const ZoneFields& zones = sim.mesh().zones;
-  return fracture::principal_stress(zones.deviator_xx[z], zones.deviator_yy[z], zones.deviator_xy[z], zones.deviator_zz[z],
-                                    zones.pressure[z])
+  const StrengthZoneFields& st = sim.zone_state().strength;
+  return fracture::principal_stress(st.deviator_xx[z], st.deviator_yy[z], st.deviator_xy[z], st.deviator_zz[z],
+                                    sim.zone_state().hydro.pressure[z])
       .largest;
 }
 
@@ -67,33 +67,35 @@ double largest_principal_stress(const Simulation& sim, Index z) {
 TEST_CASE("Cockcroft-Latham: a rod in uniaxial tension fails where the plastic work of tension reaches W_c (RZ)",
           "[verification][failure_laws]") {
   Simulation sim = pulled_rod(rate * length);
-  const ZoneFields& zones = sim.mesh().zones;
+  const Index count = sim.mesh().zones.size();
+  const StrengthZoneFields& strength = sim.zone_state().strength;
+  const FractureZoneFields& fracture_state = sim.zone_state().fracture;
   Index failed = -1;
   double increment = 0.0, stress_ratio = 0.0, worst_drift = 0.0, worst_mass = 0.0;
-  std::vector<double> before(static_cast<std::size_t>(zones.size()), 0.0);
-  std::vector<double> ratio(static_cast<std::size_t>(zones.size()), 0.0);
+  std::vector<double> before(static_cast<std::size_t>(count), 0.0);
+  std::vector<double> ratio(static_cast<std::size_t>(count), 0.0);
   for (long cycle = 0; cycle < 100000 && failed < 0; ++cycle) {
     sim.step();
     worst_drift = std::max(worst_drift, sim.ledger().relative_energy_drift());
     worst_mass = std::max(worst_mass, sim.ledger().relative_mass_error());
-    for (Index z = 0; z < zones.size(); ++z) {
+    for (Index z = 0; z < count; ++z) {
       const auto k = static_cast<std::size_t>(z);
-      if (zones.damaged[z]) {
+      if (fracture_state.damaged[z]) {
         failed = z;
-        increment = zones.plastic_strain[z] - before[k];
+        increment = strength.plastic_strain[z] - before[k];
         stress_ratio = ratio[k];  // of the step before: on the failing step the deviator is zeroed
         break;
       }
-      before[k] = zones.plastic_strain[z];
-      ratio[k] = largest_principal_stress(sim, z) / (yield + hardening * zones.plastic_strain[z]);
+      before[k] = strength.plastic_strain[z];
+      ratio[k] = largest_principal_stress(sim, z) / (yield + hardening * strength.plastic_strain[z]);
     }
   }
   REQUIRE(failed >= 0);
-  CHECK(zones.damage_criterion[failed] == static_cast<std::uint8_t>(fracture::Criterion::cockcroft_latham));
-  const double strain = zones.plastic_strain[failed];
+  CHECK(fracture_state.damage_criterion[failed] == static_cast<std::uint8_t>(fracture::Criterion::cockcroft_latham));
+  const double strain = strength.plastic_strain[failed];
   report("Cockcroft-Latham, RZ uniaxial tension", "failure plastic strain", "W = W_c at eps_p = 0.1", strain,
          "one step " + format_number("%.2e", increment) + "; sigma_1 / Y the step before " + format_number("%.5f", stress_ratio),
-         zones.size(), 0.0);
+         count, 0.0);
   // sigma_1 within 1 % of the flow stress (uniaxial stress), so W differs from the formula's by as
   // much at most: the failure strain within one step's increment, plus 1 % of 0.1.
   CHECK(std::abs(stress_ratio - 1.0) < 0.01);
@@ -105,20 +107,22 @@ TEST_CASE("Cockcroft-Latham: a rod in uniaxial tension fails where the plastic w
 
 TEST_CASE("Cockcroft-Latham: the same rod pushed flows in compression without damage (RZ)", "[verification][failure_laws]") {
   Simulation sim = pulled_rod(-rate * length);
-  const ZoneFields& zones = sim.mesh().zones;
+  const Index count = sim.mesh().zones.size();
+  const StrengthZoneFields& strength = sim.zone_state().strength;
+  const FractureZoneFields& fracture_state = sim.zone_state().fracture;
   double strain = 0.0;
   for (long cycle = 0; cycle < 100000 && strain < 0.15; ++cycle) {
     sim.step();
-    strain = *std::min_element(zones.plastic_strain.begin(), zones.plastic_strain.end());
+    strain = *std::min_element(strength.plastic_strain.begin(), strength.plastic_strain.end());
   }
   REQUIRE(strain >= 0.15);
   double most = 0.0;
   long damaged = 0;
-  for (Index z = 0; z < zones.size(); ++z) {
-    most = std::max(most, zones.damage[z]);
-    damaged += zones.damaged[z];
+  for (Index z = 0; z < count; ++z) {
+    most = std::max(most, fracture_state.damage[z]);
+    damaged += fracture_state.damaged[z];
   }
-  report("Cockcroft-Latham, RZ uniaxial compression", "largest damage at eps_p >= 0.15", "< 0.01", most, "", zones.size(), 0.0);
+  report("Cockcroft-Latham, RZ uniaxial compression", "largest damage at eps_p >= 0.15", "< 0.01", most, "", count, 0.0);
   CHECK(damaged == 0);
   CHECK(most < 0.01);
 }
