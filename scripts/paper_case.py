@@ -110,6 +110,12 @@ def scenario(args):
         if args.rim == "fixed":
             body["boundary"] = {"r_max": "fixed"}
         bodies.append(body)
+    controls = {"fracture": {"particles_per_zone": args.particles, "altitude_ratio": args.altitude_ratio,
+                             "interior_altitude_ratio": args.interior_altitude_ratio}}
+    if args.hourglass is not None:
+        # Both hourglass coefficients (the library's default is 0.05 for both): docs/validation.md,
+        # "Hourglass coefficients 0.02".
+        controls["hourglass"] = {"viscous": args.hourglass, "stiffness": args.hourglass}
     pairs = []
     names = [b["name"] for b in bodies]
     for i in range(len(names)):
@@ -135,13 +141,19 @@ def scenario(args):
         # Reactions converged to 1e-4 of a segment per step (the library's default is 1e-5, which
         # crowds of particles need); docs/validation.md gives the effect of 1e-6.
         "contact": {"pairs": pairs, "gap_tolerance": args.gap_tolerance, "method": args.contact_method},
-        "controls": {"fracture": {"particles_per_zone": args.particles, "altitude_ratio": args.altitude_ratio,
-                                  "interior_altitude_ratio": args.interior_altitude_ratio}},
+        "controls": controls,
         "penetration": {"projectile": "bullet"},
         "output": {"snapshot_interval": end_time / 20.0, "history_interval": end_time / 2000.0,
                    "pictures": {"field": "equivalent_plastic_strain"}},
         "stop": stop,
     }
+
+
+def hourglass_share(body):
+    """A body's hourglass work over the energy put into its zones (summary.json bodies.<name>.energy)."""
+    e = body.get("energy", {})
+    put_in = e.get("internal", 0.0) + e.get("converted", 0.0)
+    return e.get("hourglass", 0.0) / put_in if put_in > 0.0 else 0.0
 
 
 def bullet_tip(run_dir):
@@ -283,6 +295,10 @@ def report(run_dirs, csv_path):
             "particle_momentum_z": -particles["momentum"][0],
             "bullet_mass_g": bullet["mass"] * 1e3,
             "eroded_fraction": eroded / (bullet["mass"] + eroded) if bullet["mass"] + eroded > 0 else 0.0,
+            # Hourglass work as a share of the energy put into a body's zones (internal plus converted):
+            # the bullet's, and the largest of the plates'.
+            "bullet_hourglass_share": hourglass_share(bullet),
+            "plates_hourglass_share": max((hourglass_share(b) for b in plates), default=0.0),
             "energy_drift": energy["relative_drift"],
             "contact_work": energy["contact"],
             "mass_error": summary["ledger"]["mass"]["relative_error"],
@@ -425,6 +441,8 @@ def main():
     g.add_argument("--gap-tolerance", type=float, default=1e-4, help="contact.gap_tolerance")
     g.add_argument("--erosion", type=float, default=0.1,
                    help="lead erosion altitude ratio (default 0.1; 0: off, the paper's non-fracturing lead)")
+    g.add_argument("--hourglass", type=float, default=None,
+                   help="both hourglass coefficients, controls.hourglass.viscous and .stiffness (default: the library's 0.05)")
     g.add_argument("--velocity-window-only", action="store_true",
                    help="stop on the velocity window alone, without waiting for the bullet to clear the plates")
     g.add_argument("--contact-method", choices=["gauss_seidel", "summation"], default="gauss_seidel")

@@ -3,6 +3,7 @@
 
     scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 10]
                                   [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity,knobs,johnson_cook]
+                                  [--generate-options "--hourglass 0.02"]
 
 Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
 directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
@@ -237,11 +238,15 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--zones-per-mm", type=int, default=10)
     parser.add_argument("--groups", default="converged,ordering,fig6")
+    parser.add_argument("--generate-options", default="",
+                        help="options of scripts/paper_case.py generate put before every case's own, e.g. "
+                             "\"--hourglass 0.02\" (a case's own option of the same name wins)")
     args = parser.parse_args()
     groups = args.groups.split(",")
     for sub in ("scenarios", "runs", "logs"):
         os.makedirs(os.path.join(args.outdir, sub), exist_ok=True)
-    todo = cases(groups, args.zones_per_mm)
+    base = args.generate_options.split()
+    todo = [(group, name, base + options) for group, name, options in cases(groups, args.zones_per_mm)]
     # The same physics under two names (the 3 mm, 5 zones/mm monolithic case is in three groups) runs
     # once; the other names link to it.
     first_of = {}
