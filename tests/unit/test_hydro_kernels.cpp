@@ -98,6 +98,7 @@ void compute_forces(OneZone& mesh, const ZoneForceParams& params) {
   switch (params.viscosity.model) {
     case ViscosityModel::edge: compute_forces_with<G, ViscosityModel::edge>(mesh, params); break;
     case ViscosityModel::scalar: compute_forces_with<G, ViscosityModel::scalar>(mesh, params); break;
+    case ViscosityModel::tensor: compute_forces_with<G, ViscosityModel::tensor>(mesh, params); break;
     case ViscosityModel::off: compute_forces_with<G, ViscosityModel::off>(mesh, params); break;
   }
 }

@@ -1,0 +1,28 @@
+// The tensor viscosity (Campbell & Shashkov 2001; controls.viscosity.model = "tensor") on the hard cases
+// of docs/verification.md F7 with otherwise default controls: the spherical Noh and Sedov on the RZ
+// rectangle (50 x 50), judged by the criteria of rz_rectangle_blasts.hpp. Finer meshes are in
+// convergence_hard_cases.cpp.
+#include <catch2/catch.hpp>
+
+#include "rz_rectangle_blasts.hpp"
+#include "verification_support.hpp"
+
+using namespace krug;
+using namespace krug::verification;
+
+TEST_CASE("Tensor viscosity: Noh spherical on a rectangular RZ mesh", "[noh][axisymmetric][tensor]") {
+  scenario::Scenario scalar_q = load_example("noh_spherical_rectangle.json");
+  scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
+  const Run reference = run_to_end(scalar_q);
+  REQUIRE(reference.completed());
+
+  scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  rz_rectangle::check_noh(scenario, 50, reference.simulation.cycle(), "Noh, spherical (RZ rectangle 50 x 50, tensor q)");
+}
+
+TEST_CASE("Tensor viscosity: Sedov spherical on a rectangular RZ mesh", "[sedov][axisymmetric][tensor]") {
+  scenario::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  rz_rectangle::check_sedov(scenario, 50, "Sedov, spherical (RZ rectangle 50 x 50, tensor q)", true);
+}
