@@ -203,9 +203,14 @@ template <GeometryKind G>
 // only du across each median segment. The limiter psi_c is the edge limiter (CSW98, detail::edge_limiter)
 // of the corner's two edges, weighted by |g|^2: 1 for a velocity field linear along both edges, so the
 // viscosity is off in uniform compression, and in one-dimensional flow the limiter of the edge along it.
-// RZ control volume: F_e x (r_edge + 2 r_centre) / 3, the edge viscosity's weight of the median segment
-// (equal and opposite, consistent with the nodal masses along every grid line, docs/verification.md F8).
-// The time step sees the signal speed 2 (1 - psi_c) c_q s du_c of the strongest compressing corner.
+// RZ control volume: A_c is replaced by the corner's consistent r-weighted volume, the integral of N_p r dA
+// (quad::axisymmetric_corner_volumes, the nodal masses' share, docs/verification.md F1), so that each
+// corner's work stays -mu_c V_c |grad u|^2 <= 0; with the median segment's weight (r_edge + 2 r_centre) / 3
+// of the edge viscosity on the side forces instead, the results were the same on F7's rectangles.
+// The time step sees the signal speed 2 (1 - psi_c) c_q s du_c max(1, L_c / h) of the strongest
+// compressing corner, h the zone's stable length: L_c reaches twice the shorter edge, and without the
+// factor the damping of a thin zone (the polar mesh's slivers along the axis) outran the CFL step and
+// oscillated with a growing amplitude.
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_tensor_viscosity(ZoneBatch& batch, int count, Index first, const Mesh& mesh,
                                                           HydroZoneFields& hydro, Index zone_begin,
@@ -263,6 +268,9 @@ template <GeometryKind G>
     }
     const double rho = zones.density[z];
     const double c = hydro.sound_speed[z];
+    const double stable_length = quad::stable_length(x, batch.area[i]);
+    std::array<double, 4> corner_volume{};
+    if (axisymmetric && !area_weighted) corner_volume = quad::axisymmetric_corner_volumes(x);
     // Each corner's coefficient mu_c w_c and cosine; its stress along e1 (before) and e2 (after).
     std::array<Vec2, 4> q_before{}, q_after{};
     std::array<double, 4> cosine{};
@@ -302,17 +310,16 @@ template <GeometryKind G>
       const double quadratic = settings.cq_s * du;
       const double mu = rho * active * (quadratic + std::sqrt(quadratic * quadratic + settings.cl * settings.cl * c * c)) *
                         extent;
-      const double w = mu * region_area[p] / sin2;
+      const double w = mu * (axisymmetric && !area_weighted ? corner_volume[p] : region_area[p]) / sin2;
       q_before[p] = w * gradient[m];
       q_after[p] = w * gradient[p];
       cosine[p] = cos_c;
-      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic);
+      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic * std::max(1.0, extent / stable_length));
     }
     for (int k = 0; k < 4; ++k) {
       if (!(length[k] > 0.0)) continue;
       const int k1 = quad::next(k);
       Vec2 force = (1.0 / length[k]) * (q_after[k] + cosine[k] * q_before[k] + q_before[k1] + cosine[k1] * q_after[k1]);
-      if (axisymmetric && !area_weighted) force *= centre.y + (mid[k].y - centre.y) / 3.0;
       if (force.x == 0.0 && force.y == 0.0) continue;
       batch.fx[k][i] += force.x;
       batch.fy[k][i] += force.y;
