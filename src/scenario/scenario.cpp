@@ -67,9 +67,11 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
   {
     JsonObject viscosity = spec->object_or_empty("viscosity");
     JsonObject* v = &viscosity;
-    const std::string model = v->choice("model", {"edge", "scalar", "off"}, "edge");
-    c.viscosity.model = model == "edge" ? ViscosityModel::edge : model == "scalar" ? ViscosityModel::scalar
-                                                                                    : ViscosityModel::off;
+    const std::string model = v->choice("model", {"edge", "scalar", "tensor", "off"}, "edge");
+    c.viscosity.model = model == "edge"     ? ViscosityModel::edge
+                        : model == "scalar" ? ViscosityModel::scalar
+                        : model == "tensor" ? ViscosityModel::tensor
+                                            : ViscosityModel::off;
     c.viscosity.quadratic = v->number("quadratic", c.viscosity.quadratic, Range::non_negative());
     c.viscosity.linear = v->number("linear", c.viscosity.linear, Range::non_negative());
     c.viscosity.limiter = v->flag("limiter", c.viscosity.limiter);

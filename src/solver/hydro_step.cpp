@@ -35,6 +35,7 @@ ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Bod
     switch (params.viscosity.model) {
       case ViscosityModel::edge: return run.template operator()<G, ViscosityModel::edge>();
       case ViscosityModel::scalar: return run.template operator()<G, ViscosityModel::scalar>();
+      case ViscosityModel::tensor: return run.template operator()<G, ViscosityModel::tensor>();
       case ViscosityModel::off: break;
     }
     return run.template operator()<G, ViscosityModel::off>();

@@ -98,6 +98,7 @@ void compute_forces(OneZone& mesh, const ZoneForceParams& params) {
   switch (params.viscosity.model) {
     case ViscosityModel::edge: compute_forces_with<G, ViscosityModel::edge>(mesh, params); break;
     case ViscosityModel::scalar: compute_forces_with<G, ViscosityModel::scalar>(mesh, params); break;
+    case ViscosityModel::tensor: compute_forces_with<G, ViscosityModel::tensor>(mesh, params); break;
     case ViscosityModel::off: compute_forces_with<G, ViscosityModel::off>(mesh, params); break;
   }
 }
@@ -359,5 +360,46 @@ TEST_CASE("hydro kernels: the hourglass stiffness state stops at the plastic bou
     } else {
       CHECK(largest > 2.0 * flow_stress * b_norm);  // unbounded: far past the k_p = 1 bound
     }
+  }
+}
+
+// The tensor viscosity (Campbell & Shashkov 2001) alone on the distorted zone, compressed and sheared
+// (one zone: no continuing edges, so the limiter is 0 and the viscosity fully on): its side forces are
+// equal and opposite (the corner forces sum to zero, also in RZ), and it only dissipates: the work rate
+// sum_p f_p . u_p is negative and equal to minus the booked viscous power, to round-off.
+TEST_CASE("hydro kernels: the tensor viscosity conserves momentum and dissipates", "[hydro][kernel]") {
+  const Vec2 centre = quad::centre(distorted);
+  for (const GeometryKind geometry : {GeometryKind::planar, GeometryKind::axisymmetric}) {
+    INFO((geometry == GeometryKind::planar ? "planar" : "axisymmetric control volume"));
+    OneZone mesh = one_zone(distorted, geometry, 1.3, 0.0);
+    mesh.state.hydro.sound_speed[0] = 0.7;
+    set_velocities(mesh, [&](Index p) {
+      const Vec2 d = distorted[static_cast<std::size_t>(p)] - centre;
+      return Vec2{-1.5 * d.x + 0.4 * d.y, -0.8 * d.y - 0.3 * d.x};  // compression with shear and rotation
+    });
+    ZoneForceParams params = stress_only();
+    params.viscosity.model = ViscosityModel::tensor;
+    params.shock_slope = 1.6667 / 2.0;
+    ZoneState& z = mesh.state;
+    const ArtificialPower power =
+        geometry == GeometryKind::planar
+            ? compute_corner_forces<GeometryKind::planar, ViscosityModel::tensor>(mesh, z.hydro, z.strength, z.hourglass,
+                                                                                  z.fracture, 0, 1, params)
+            : compute_corner_forces<GeometryKind::axisymmetric, ViscosityModel::tensor>(
+                  mesh, z.hydro, z.strength, z.hourglass, z.fracture, 0, 1, params);
+    Vec2 sum{};
+    double largest = 0.0;
+    for (std::size_t p = 0; p < 4; ++p) {
+      const Vec2 f{z.hydro.corner_force[2 * p], z.hydro.corner_force[2 * p + 1]};
+      sum += f;
+      largest = std::max(largest, norm(f));
+    }
+    CHECK(largest > 0.0);
+    CHECK(z.hydro.viscous_speed[0] > 0.0);
+    CHECK(std::abs(sum.x) < 1e-14 * largest);
+    CHECK(std::abs(sum.y) < 1e-14 * largest);
+    const double rate = corner_power(mesh);
+    CHECK(rate < 0.0);
+    CHECK(power.viscous == Approx(-rate).epsilon(1e-13));
   }
 }

@@ -182,6 +182,160 @@ template <GeometryKind G>
   viscous_power = power;
 }
 
+// Tensor viscosity (Campbell & Shashkov, J. Comput. Phys. 172, 2001), added to the batch's forces; writes
+// hydro.viscous_speed and adds the dissipation of every side force to `viscous_power` in zone and edge order.
+//
+// Each corner c (node p, edges e1 = (p-1, p) and e2 = (p, p+1)) has its region of the median mesh: x_p,
+// the midpoint of e2, the zone centre, the midpoint of e1 (area A_c). Where the divergence of the velocity
+// over that region (its boundary integral, with the midpoint and centre velocities the means of the
+// nodes') is negative, the corner carries a viscous stress mu_c grad u with
+//   mu_c = rho (1 - psi_c) [c_q s du_c + sqrt(c_q^2 s^2 du_c^2 + c_l^2 c^2)] L_c,
+// du_c the larger velocity difference across the region (between its opposite sides), L_c the region's
+// extent along that difference (sqrt(4 A_c l_along / l_across), at most twice the shorter edge), and grad u
+// known along the two edges, g_1 = (u_p - u_p-1) / |e1|, g_2 = (u_p+1 - u_p) / |e2|. The force across the
+// median segment of edge e (between its corners c at its start and c' at its end) is
+//   F_e = [w_c (mu_c g_2 + cos_c mu_c g_1) + w_c' (mu_c' g_1' + cos_c' mu_c' g_2')] / |e|,
+// w = A / sin^2 of the corner's angle, cos the cosine between the corner's two edges; +F_e on the edge's
+// first node, -F_e on its second. The work rate of a corner's share is
+//   -mu_c w_c (|g_1|^2 + |g_2|^2 + 2 cos g_1 . g_2) = -mu_c A_c |grad u|^2 <= 0
+// (the Frobenius norm of the gradient from its two edge projections), so the viscosity only dissipates,
+// and it damps every part of grad u, shear included, in a compressing corner; the edge viscosity damps
+// only du across each median segment. The limiter psi_c is the edge limiter (CSW98, detail::edge_limiter)
+// of the corner's two edges, weighted by |g|^2: 1 for a velocity field linear along both edges, so the
+// viscosity is off in uniform compression, and in one-dimensional flow the limiter of the edge along it.
+// RZ control volume: A_c is replaced by the corner's consistent r-weighted volume, the integral of N_p r dA
+// (quad::axisymmetric_corner_volumes, the nodal masses' share, docs/verification.md F1), so that each
+// corner's work stays -mu_c V_c |grad u|^2 <= 0; with the median segment's weight (r_edge + 2 r_centre) / 3
+// of the edge viscosity on the side forces instead, the results were the same on F7's rectangles.
+// The time step sees the signal speed 2 (1 - psi_c) c_q s du_c max(1, L_c / h) of the strongest
+// compressing corner, h the zone's stable length: L_c reaches twice the shorter edge, and without the
+// factor the damping of a thin zone (the polar mesh's slivers along the axis) outran the CFL step and
+// oscillated with a growing amplitude.
+template <GeometryKind G>
+[[gnu::noinline]] inline void batch_tensor_viscosity(ZoneBatch& batch, int count, Index first, const Mesh& mesh,
+                                                          HydroZoneFields& hydro, Index zone_begin,
+                                                          const ZoneForceParams& params, const ForceSettings settings,
+                                                          AreaWeightedArrays area_weighted_arrays, double& viscous_power) {
+  constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
+  const bool area_weighted = axisymmetric && settings.area_weighted;
+  const ZoneFields& zones = mesh.zones;
+  double power = viscous_power;
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    const ZoneCorners& n = zones.corners[z];
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const Vec2 centre = quad::centre(x);
+    const Vec2 centre_velocity = 0.25 * (u[0] + u[1] + u[2] + u[3]);
+    std::array<Vec2, 4> mid, mid_velocity;
+    std::array<double, 4> length;
+    for (int k = 0; k < 4; ++k) {
+      const int k1 = quad::next(k);
+      mid[k] = 0.5 * (x[k] + x[k1]);
+      mid_velocity[k] = 0.5 * (u[k] + u[k1]);
+      length[k] = n[k] == n[k1] ? 0.0 : norm(x[k1] - x[k]);
+    }
+    // The compression test: the divergence over each corner's region (x_p, mid of e2, centre, mid of e1).
+    std::array<double, 4> region_area{};
+    std::array<bool, 4> compressing{};
+    bool any = false;
+    for (int p = 0; p < 4; ++p) {
+      const int m = quad::prev(p);
+      const Vec2 diagonal_a = centre - x[p], diagonal_b = mid[m] - mid[p];
+      const double a = 0.5 * cross(diagonal_a, diagonal_b);
+      region_area[p] = a;
+      if (!(a > 0.0)) continue;
+      const double flux = cross(centre_velocity - u[p], diagonal_b) - cross(mid_velocity[m] - mid_velocity[p], diagonal_a);
+      compressing[p] = flux < 0.0;
+      any = any || compressing[p];
+    }
+    if (!any) {
+      hydro.viscous_speed[z] = 0.0;
+      continue;
+    }
+    // Velocity gradient along each edge and its limiter.
+    std::array<Vec2, 4> gradient{};
+    std::array<double, 4> gradient2{}, psi{};
+    for (int k = 0; k < 4; ++k) {
+      if (!(length[k] > 0.0)) continue;
+      const int k1 = quad::next(k);
+      const Vec2 du = u[k1] - u[k];
+      if (!(norm(du) > 1e-150)) continue;  // a negligible difference: no gradient (and no denormals)
+      gradient[k] = (1.0 / length[k]) * du;
+      gradient2[k] = dot(gradient[k], gradient[k]);
+      if (params.viscosity.limiter) psi[k] = zone_edge_limiter(mesh, z, k, zone_begin, du, x[k1] - x[k], {});
+    }
+    const double rho = zones.density[z];
+    const double c = hydro.sound_speed[z];
+    const double stable_length = quad::stable_length(x, batch.area[i]);
+    std::array<double, 4> corner_volume{};
+    if (axisymmetric && !area_weighted) corner_volume = quad::axisymmetric_corner_volumes(x);
+    // Each corner's coefficient mu_c w_c and cosine; its stress along e1 (before) and e2 (after).
+    std::array<Vec2, 4> q_before{}, q_after{};
+    std::array<double, 4> cosine{};
+    double viscous_speed = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      if (!compressing[p]) continue;
+      const int m = quad::prev(p), p1 = quad::next(p);
+      const double l1 = length[m], l2 = length[p];
+      const double weights = gradient2[m] + gradient2[p];
+      if (!(weights > 0.0)) continue;
+      const double limiter = (psi[m] * gradient2[m] + psi[p] * gradient2[p]) / weights;
+      const double active = 1.0 - limiter;
+      if (!(active > 0.0)) continue;
+      // A corner of a triangle stored as a quadrilateral has one edge of zero length: its other edge only.
+      double cos_c = 0.0;
+      double shortest = std::max(l1, l2);
+      if (l1 > 0.0 && l2 > 0.0) {
+        cos_c = dot(x[m] - x[p], x[p1] - x[p]) / (l1 * l2);
+        shortest = std::min(l1, l2);
+      }
+      const double sin2 = 1.0 - cos_c * cos_c;
+      if (!(sin2 >= 1e-4) || !(shortest > 0.0)) continue;  // a flat corner
+      // The region's two extents (between its opposite sides) and the velocity differences across them.
+      const Vec2 extent_1 = 0.5 * (mid[p] + centre - x[p] - mid[m]);  // from e1's side to the opposite side
+      const Vec2 extent_2 = 0.5 * (centre + mid[m] - x[p] - mid[p]);  // from e2's side to the opposite side
+      const Vec2 jump_1 = mid_velocity[p] + centre_velocity - u[p] - mid_velocity[m];
+      const Vec2 jump_2 = centre_velocity + mid_velocity[m] - u[p] - mid_velocity[p];
+      const double j1 = dot(jump_1, jump_1), j2 = dot(jump_2, jump_2);
+      const Vec2 jump = j1 >= j2 ? jump_1 : jump_2;
+      const double du = std::sqrt(std::max(j1, j2));
+      const double n1 = norm(extent_1), n2 = norm(extent_2);
+      if (!(n1 > 0.0) || !(n2 > 0.0)) continue;
+      // The region's extent along the velocity difference: the extent whose direction is closer to it.
+      const bool along_1 = std::abs(dot(extent_1, jump)) * n2 >= std::abs(dot(extent_2, jump)) * n1;
+      const double ratio = along_1 ? n1 / n2 : n2 / n1;
+      const double extent = std::min(std::sqrt(4.0 * region_area[p] * ratio), 2.0 * shortest);
+      const double quadratic = settings.cq_s * du;
+      const double mu = rho * active * (quadratic + std::sqrt(quadratic * quadratic + settings.cl * settings.cl * c * c)) *
+                        extent;
+      const double w = mu * (axisymmetric && !area_weighted ? corner_volume[p] : region_area[p]) / sin2;
+      q_before[p] = w * gradient[m];
+      q_after[p] = w * gradient[p];
+      cosine[p] = cos_c;
+      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic * std::max(1.0, extent / stable_length));
+    }
+    for (int k = 0; k < 4; ++k) {
+      if (!(length[k] > 0.0)) continue;
+      const int k1 = quad::next(k);
+      Vec2 force = (1.0 / length[k]) * (q_after[k] + cosine[k] * q_before[k] + q_before[k1] + cosine[k1] * q_after[k1]);
+      if (force.x == 0.0 && force.y == 0.0) continue;
+      batch.fx[k][i] += force.x;
+      batch.fy[k][i] += force.y;
+      batch.fx[k1][i] -= force.x;
+      batch.fy[k1][i] -= force.y;
+      double dissipation = dot(force, u[k1] - u[k]);
+      if (area_weighted) {
+        dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
+      }
+      power += dissipation;
+    }
+    hydro.viscous_speed[z] = viscous_speed;
+  }
+  viscous_power = power;
+}
+
 // Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
 // rates, the stiffness state (hourglass.hourglass_x/y, intact zones only), and the batch's hourglass power.
 template <GeometryKind G>

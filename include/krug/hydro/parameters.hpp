@@ -8,6 +8,7 @@ namespace krug {
 enum class ViscosityModel {
   edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
   scalar,  // Wilkins' zone-centred q added to the pressure
+  tensor,  // Campbell & Shashkov (2001) corner (tensor) viscosity with a limiter
   off
 };
 
@@ -15,7 +16,7 @@ struct ViscosityParams {
   ViscosityModel model = ViscosityModel::edge;
   double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
   double linear = 0.5;     // c_l, multiplies the sound speed
-  bool limiter = true;     // edge model: switch off for velocity fields linear along the edge
+  bool limiter = true;     // edge and tensor models: switch off for velocity fields linear along the edge
   double heat_conduction = 0.0;  // Noh's artificial heat flux coefficient (heat_conduction.hpp), bodies
                                  // without strength; 0: off
 };

@@ -173,6 +173,10 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
       detail::batch_edge_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings, area_weighted_arrays,
                                       shared_limiters, power.viscous);
     }
+    if constexpr (Visc == ViscosityModel::tensor) {
+      detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
+                                        area_weighted_arrays, power.viscous);
+    }
     if (settings.hourglass_on) {
       detail::batch_hourglass_forces<G>(batch, count, first, zones, hydro, hourglass, fracture, params, settings);
     }

@@ -1,0 +1,42 @@
+// The tensor viscosity (Campbell & Shashkov 2001; controls.viscosity.model = "tensor") on the hard cases
+// of docs/verification.md F7 with otherwise default controls: the spherical Noh and Sedov on the RZ
+// rectangle (50 x 50), judged by the criteria of rz_rectangle_blasts.hpp. Finer meshes are in
+// convergence_hard_cases.cpp.
+#include <catch2/catch.hpp>
+
+#include "rz_rectangle_blasts.hpp"
+#include "verification_support.hpp"
+
+using namespace krug;
+using namespace krug::verification;
+
+TEST_CASE("Tensor viscosity: Noh spherical on a rectangular RZ mesh", "[noh][axisymmetric][tensor]") {
+  scenario::Scenario scalar_q = load_example("noh_spherical_rectangle.json");
+  scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
+  const Run reference = run_to_end(scalar_q);
+  REQUIRE(reference.completed());
+
+  scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  rz_rectangle::check_noh(scenario, 50, reference.simulation.cycle(), "Noh, spherical (RZ rectangle 50 x 50, tensor q)");
+}
+
+TEST_CASE("Tensor viscosity: Sedov spherical on a rectangular RZ mesh", "[sedov][axisymmetric][tensor]") {
+  scenario::Scenario scenario = load_example("sedov_spherical_rectangle.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  rz_rectangle::check_sedov(scenario, 50, "Sedov, spherical (RZ rectangle 50 x 50, tensor q)", true);
+}
+
+// Known failure (docs/verification.md F7, tensor viscosity): on the equal-angle polar verification mesh
+// (100 x 40) the tensor viscosity stops at t = 0.016 (zone 2, the axis row next to the origin); the
+// same problem at 50 x 20 and the cylindrical Noh at 100 x 40 (XY) run to the end. The edge viscosity
+// passes this mesh (test_noh.cpp), so the tensor viscosity is not the default.
+TEST_CASE("Tensor viscosity: Noh spherical on an RZ equal-angle polar mesh", "[noh][axisymmetric][tensor][!mayfail]") {
+  scenario::Scenario scenario = load_example("noh_spherical.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  const Run run = run_to_end(scenario);
+  INFO(run.failure);
+  report("Noh, spherical (RZ polar, tensor q)", "reaches t = 0.6", "0.6", run.simulation.time(),
+         run.completed() ? "completed" : "FAILED", run.simulation.mesh().zones.size(), run.seconds);
+  CHECK(run.completed());
+}
