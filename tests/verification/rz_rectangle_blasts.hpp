@@ -30,6 +30,15 @@ inline scenario::Scenario load(const std::string& file, int n) {
   return scenario::parse_scenario(text, path.string());
 }
 
+// The cycles the Noh rectangle takes to its end time at n x n zones with Wilkins' scalar q (F7's
+// workaround, which completes it at 50 x 50): the budget check_noh allows 3 x of. 0 if that run stops.
+inline long noh_scalar_q_cycles(int n) {
+  scenario::Scenario scalar_q = load("noh_spherical_rectangle.json", n);
+  scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
+  const Run reference = run_to_end(scalar_q);
+  return reference.completed() ? reference.simulation.cycle() : 0;
+}
+
 inline Vec2 zone_centre(const Mesh& mesh, Index z) {
   Vec2 c{};
   for (Index n : mesh.zones.corners[z]) c += 0.25 * mesh.nodes.position(n);

@@ -11,14 +11,12 @@ using namespace krug;
 using namespace krug::verification;
 
 TEST_CASE("Tensor viscosity: Noh spherical on a rectangular RZ mesh", "[noh][axisymmetric][tensor]") {
-  scenario::Scenario scalar_q = load_example("noh_spherical_rectangle.json");
-  scalar_q.setup.controls.viscosity.model = ViscosityModel::scalar;
-  const Run reference = run_to_end(scalar_q);
-  REQUIRE(reference.completed());
+  const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
+  REQUIRE(scalar_q_cycles > 0);
 
   scenario::Scenario scenario = load_example("noh_spherical_rectangle.json");
   scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
-  rz_rectangle::check_noh(scenario, 50, reference.simulation.cycle(), "Noh, spherical (RZ rectangle 50 x 50, tensor q)");
+  rz_rectangle::check_noh(scenario, 50, scalar_q_cycles, "Noh, spherical (RZ rectangle 50 x 50, tensor q)");
 }
 
 TEST_CASE("Tensor viscosity: Sedov spherical on a rectangular RZ mesh", "[sedov][axisymmetric][tensor]") {

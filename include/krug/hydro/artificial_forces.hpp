@@ -264,7 +264,10 @@ template <GeometryKind G>
       if (!(norm(du) > 1e-150)) continue;  // a negligible difference: no gradient (and no denormals)
       gradient[k] = (1.0 / length[k]) * du;
       gradient2[k] = dot(gradient[k], gradient[k]);
-      if (params.viscosity.limiter) psi[k] = zone_edge_limiter(mesh, z, k, zone_begin, du, x[k1] - x[k], {});
+      // The limiter only of an edge a compressing corner reads (its corners k and k + 1).
+      if (params.viscosity.limiter && (compressing[k] || compressing[k1])) {
+        psi[k] = zone_edge_limiter(mesh, z, k, zone_begin, du, x[k1] - x[k], {});
+      }
     }
     const double rho = zones.density[z];
     const double c = hydro.sound_speed[z];
