@@ -157,14 +157,18 @@ struct PlasticReturn {
 // scaled to the surface with no plastic strain.
 inline PlasticReturn radial_return(const Deviator& trial, double shear_modulus, double yield_stress,
                                    double hardening_modulus = 0.0) {
+  // Written without branches (a trial inside the surface is scaled by exactly 1), so that a loop over
+  // zones that calls it vectorises.
   const double start_yield = std::max(yield_stress, 0.0);
   const double trial_equivalent = equivalent_stress(trial);
-  if (trial_equivalent <= start_yield) return {trial, 0.0, 0.0, false};
+  const bool yielded = trial_equivalent > start_yield;
   const double stiffness = 3.0 * shear_modulus + hardening_modulus;
-  const double increment = stiffness > 0.0 ? (trial_equivalent - start_yield) / stiffness : 0.0;
+  const double return_increment = stiffness > 0.0 ? (trial_equivalent - start_yield) / stiffness : 0.0;
+  const double increment = yielded ? return_increment : 0.0;
   const double end_yield = std::max(start_yield + hardening_modulus * increment, 0.0);
-  return {scaled(trial, end_yield / trial_equivalent), increment,
-          0.5 * (start_yield + end_yield) * increment, true};
+  const double factor = yielded ? end_yield / trial_equivalent : 1.0;
+  const double work = yielded ? 0.5 * (start_yield + end_yield) * increment : 0.0;
+  return {scaled(trial, factor), increment, work, yielded};
 }
 
 // ---------------------------------------------------------------------------------------------------
