@@ -9,21 +9,23 @@
 
 namespace krug {
 
-// Zones (or nodes) per block, from the loop's length alone (never from the number of threads): an
-// eighth of the loop, at least 1 024 and at most 4 096. Large blocks keep the limiter sharing, which a
-// block boundary interrupts; small loops still get two blocks or more. The measurements behind the
-// bounds are in docs/performance.md ("Two threads").
-inline constexpr Index smallest_block = 1024;
+// Zones (or nodes) per block, from the loop's length alone (never from the number of threads): the loop
+// is cut into an even number of equal blocks (to within one) of at most 4 096, so that two threads get
+// equal shares; a loop shorter than 2 x 512 is one block. Large blocks keep the limiter sharing, which
+// a block boundary interrupts. The measurements behind the bounds are in docs/performance.md ("Two threads").
+inline constexpr Index smallest_block = 512;
 inline constexpr Index largest_block = 4096;
 
-inline Index block_size(Index length) {
-  return std::clamp<Index>((length + 7) / 8, smallest_block, largest_block);
+inline Index block_count(Index begin, Index end) {
+  const Index length = end - begin;
+  if (length <= 0) return 0;
+  if (length < 2 * smallest_block) return 1;
+  return 2 * ((length + 2 * largest_block - 1) / (2 * largest_block));
 }
 
-inline Index block_count(Index begin, Index end) {
-  if (end <= begin) return 0;
-  const Index size = block_size(end - begin);
-  return (end - begin + size - 1) / size;
+inline Index block_size(Index length) {
+  const Index blocks = block_count(0, length);
+  return blocks > 0 ? (length + blocks - 1) / blocks : 0;
 }
 
 // Fewer blocks than this run on the calling thread alone: starting the other threads and waiting for
