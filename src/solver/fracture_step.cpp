@@ -5,12 +5,14 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <type_traits>
 #include <variant>
 
 #include "krug/fracture/damage.hpp"
 #include "krug/particles/conversion.hpp"
 #include "krug/solver/fracture_step.hpp"
+#include "krug/solver/parallel.hpp"
 
 namespace krug {
 
@@ -53,24 +55,29 @@ bool face_is_free(const ZoneFields& zones, Index zone, int edge, const std::vect
 
 void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
                            const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
-                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts) {
+                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts,
+                           int threads) {
   const std::vector<double>& energy = mesh.zones.specific_energy;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!fracture::enabled(laws[b])) continue;
     const Body& body = bodies[b];
     const Material& material = materials[static_cast<std::size_t>(body.material)];
     // One dispatch per body on the law and the strength model (which alone knows a temperature).
-    counts[b].damaged += std::visit(
-        [&](const auto& law, const auto& strength) {
-          using S = std::decay_t<decltype(strength)>;
-          if constexpr (std::is_same_v<S, JohnsonCook>) {
-            return fracture::damage_zones(mesh, state, body.zone_begin, body.zone_end, law, geometry, now, dt,
-                                          [&](Index z) { return strength.temperature_from_energy(energy[z]); });
-          } else {
-            return fracture::damage_zones(mesh, state, body.zone_begin, body.zone_end, law, geometry, now, dt);
-          }
-        },
-        laws[b], material.strength);
+    const auto in_block = [&](Index first, Index last) {
+      return std::visit(
+          [&](const auto& law, const auto& strength) {
+            using S = std::decay_t<decltype(strength)>;
+            if constexpr (std::is_same_v<S, JohnsonCook>) {
+              return fracture::damage_zones(mesh, state, first, last, law, geometry, now, dt,
+                                            [&](Index z) { return strength.temperature_from_energy(energy[z]); });
+            } else {
+              return fracture::damage_zones(mesh, state, first, last, law, geometry, now, dt);
+            }
+          },
+          laws[b], material.strength);
+    };
+    const std::vector<long> damaged = block_results<long>(body.zone_begin, body.zone_end, threads, in_block);
+    counts[b].damaged += std::accumulate(damaged.begin(), damaged.end(), 0L);
   }
 }
 
@@ -78,24 +85,36 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& st
                                            const std::vector<Material>& materials,
                                            const std::vector<fracture::FailureLaw>& laws,
                                            const FractureControls& fc, const std::vector<std::uint8_t>& held_x,
-                                           const std::vector<std::uint8_t>& held_y) {
+                                           const std::vector<std::uint8_t>& held_y, int threads) {
   const ZoneFields& zones = mesh.zones;
   bool any_damaged = false;
   for (Index z = 0; z < zones.size() && !any_damaged; ++z) any_damaged = zones.active[z] && state.fracture.damaged[z];
   std::vector<Conversion> chosen;
+  // The zones of [begin, end) that choose(z) picks, in zone order, found in blocks on the threads.
+  const auto choose_in = [&](Index begin, Index end, auto choose) {
+    const auto blocks = block_results<std::vector<Conversion>>(begin, end, threads, [&](Index first, Index last) {
+      std::vector<Conversion> found;
+      for (Index z = first; z < last; ++z) {
+        if (const auto rule = choose(z)) found.push_back({z, *rule});
+      }
+      return found;
+    });
+    for (const std::vector<Conversion>& found : blocks) chosen.insert(chosen.end(), found.begin(), found.end());
+  };
   // Erosion on distortion: intact zones of bodies that ask for it, collapsed below their ratio.
   for (const Body& body : bodies) {
     const fracture::ErosionLimits erosion = body.erosion();
     if (!erosion.any()) continue;
-    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      if (!zones.active[z] || state.fracture.damaged[z]) continue;
+    choose_in(body.zone_begin, body.zone_end, [&](Index z) -> std::optional<ConversionRule> {
+      if (!zones.active[z] || state.fracture.damaged[z]) return std::nullopt;
       const quad::Corners x = mesh.corner_positions(z);
       if (erosion.strained(state.strength.plastic_strain[z]) ||
           collapsed(erosion, x, zones.area[z], zones.initial_altitude[z]) ||
           has_inverted_corner(x, zones.corners[z])) {
-        chosen.push_back({z, ConversionRule::erosion});
+        return ConversionRule::erosion;
       }
-    }
+      return std::nullopt;
+    });
   }
   if (!any_damaged) return chosen;
   // Damaged zones whose step is below time_step_floor_ratio x the median zone step (of the active
@@ -138,8 +157,8 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& st
     const Body& body = bodies[b];
     const double reference_density = materials[static_cast<std::size_t>(body.material)].reference_density;
     const double loosening_limit = fracture::loosening_limit(laws[b]);
-    for (Index z = body.zone_begin; z < body.zone_end; ++z) {
-      if (!zones.active[z] || !state.fracture.damaged[z]) continue;
+    choose_in(body.zone_begin, body.zone_end, [&](Index z) -> std::optional<ConversionRule> {
+      if (!zones.active[z] || !state.fracture.damaged[z]) return std::nullopt;
       const quad::Corners x = mesh.corner_positions(z);
       const double altitude = quad::smallest_altitude(x, zones.area[z]);
       const double chi = fracture::loosening(zones.density[z], reference_density);
@@ -147,14 +166,13 @@ std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& st
                                                    zones.initial_altitude[z], fc.altitude_ratio);
       bool on_surface = false;
       for (int k = 0; k < 4 && !on_surface; ++k) on_surface = face_is_free(zones, z, k, held_x, held_y);
-      if (fully && on_surface) {
-        chosen.push_back({z, ConversionRule::surface});
-      } else if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
-                 has_inverted_corner(x, zones.corners[z]) ||
-                 state.hydro.stable_time_step[z] < ratio * median_step) {
-        chosen.push_back({z, ConversionRule::interior});  // a documented deviation from the paper, counted
+      if (fully && on_surface) return ConversionRule::surface;
+      if (altitude < fc.interior_altitude_ratio * zones.initial_altitude[z] ||
+          has_inverted_corner(x, zones.corners[z]) || state.hydro.stable_time_step[z] < ratio * median_step) {
+        return ConversionRule::interior;  // a documented deviation from the paper, counted
       }
-    }
+      return std::nullopt;
+    });
   }
   return chosen;
 }

@@ -328,13 +328,13 @@ void Simulation::fail(const std::string& what, Index zone) const {
 void Simulation::evaluate_fracture() {
   // The state just computed is at t^{n+1}; the plastic strain grew over dt^{n+1/2}.
   evaluate_failure_laws(state_.mesh, state_.zone_state, bodies_, materials_, failure_laws_, geometry_,
-                        state_.time + state_.time_step_next, state_.time_step_next, state_.fracture_counts);
+                        state_.time + state_.time_step_next, state_.time_step_next, state_.fracture_counts, controls_.threads);
 }
 
 void Simulation::convert_fractured_zones() {
   const std::vector<Conversion> chosen = choose_conversions(state_.mesh, state_.zone_state, bodies_, materials_,
                                                             failure_laws_, controls_.fracture, boundary_.held_x(),
-                                                            boundary_.held_y());
+                                                            boundary_.held_y(), controls_.threads);
   if (chosen.empty()) return;
   convert_zones(chosen, state_.mesh, state_.particles, controls_.fracture.particles_per_zone,
                 state_.time + state_.time_step_next, state_.zones_per_node, boundary_.held_x(), boundary_.held_y(),

@@ -32,9 +32,11 @@ struct FractureCounts {
 // t^{n+1} = `now`, the plastic strain having grown over `dt`; adds the newly damaged zones to
 // counts[b].damaged. Reads the mesh, the hydro and strength state; writes the fracture state (and,
 // for a zone that becomes damaged, fracture::damage_zone's stress, pressure and hourglass state).
+// Zone by zone, so in blocks on up to `threads` threads (solver/parallel.hpp) with the same result.
 void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
                            const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
-                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts);
+                           GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts,
+                           int threads = 1);
 
 // Why a zone leaves the grid: fully fractured on a free surface (the paper's rule), damaged in the
 // interior (a documented deviation: f_i, an inverted corner, the time-step floor), or eroded.
@@ -47,12 +49,13 @@ struct Conversion {
 // Step 7's choice, the whole layer before any zone converts (one boundary layer a step): eroded
 // zones of bodies that ask for erosion, then the damaged zones of bodies with a failure law, in zone
 // order. held_x/held_y (per node) tell a free face from the axis, a symmetry plane or a held rim.
-// Reads the mesh and the zones' damage, plastic strain and stable steps.
+// Reads the mesh and the zones' damage, plastic strain and stable steps. The zone loops run in blocks
+// on up to `threads` threads, their choices joined in block order: the same list on any number.
 std::vector<Conversion> choose_conversions(const Mesh& mesh, const ZoneState& state, const std::vector<Body>& bodies,
                                            const std::vector<Material>& materials,
                                            const std::vector<fracture::FailureLaw>& laws,
                                            const FractureControls& controls, const std::vector<std::uint8_t>& held_x,
-                                           const std::vector<std::uint8_t>& held_y);
+                                           const std::vector<std::uint8_t>& held_y, int threads = 1);
 
 // Where a conversion books: the ledger's converted and internal lines, per body the converted energy
 // and the counters.
