@@ -1,7 +1,8 @@
 #pragma once
 // Broad phase of contact: a uniform grid over axis-aligned boxes, built by counting sort (linear in
-// the number of boxes, deterministic order). A query visits every stored item whose cells overlap the
-// query box, each once.
+// the number of boxes, deterministic order). A query visits every stored item whose box overlaps the
+// query box, each once: at the first of the query's cells (row by row) that the item's cells share,
+// its lowest row and column in common. A query writes nothing, so threads may query one grid at once.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,8 +35,7 @@ class UniformGrid {
     const std::size_t n = boxes.size();
     cell_start_.clear();
     items_.clear();
-    stamp_.assign(n, 0);
-    epoch_ = 0;
+    first_cell_.resize(n);
     if (n == 0) return;
     bounds_ = Box{};
     double extent_sum = 0.0;
@@ -61,6 +61,7 @@ class UniformGrid {
     fill.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
       visit_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = static_cast<std::uint32_t>(i); });
+      first_cell_[i] = {cell_index(boxes[i].min.x - bounds_.min.x, nx_), cell_index(boxes[i].min.y - bounds_.min.y, ny_)};
     }
   }
 
@@ -68,18 +69,20 @@ class UniformGrid {
   template <class Visit>
   void query(const Box& query, Visit&& visit) const {
     if (items_.empty() || !bounds_.overlaps(query)) return;  // every stored box lies within bounds_
-    if (++epoch_ == 0) {
-      std::fill(stamp_.begin(), stamp_.end(), 0);
-      epoch_ = 1;
-    }
-    visit_cells(query, [&](std::size_t c) {
-      for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        const std::uint32_t item = items_[k];
-        if (stamp_[item] == epoch_) continue;
-        stamp_[item] = epoch_;
-        if ((*boxes_)[item].overlaps(query)) visit(static_cast<std::size_t>(item));
+    const int i0 = cell_index(query.min.x - bounds_.min.x, nx_), i1 = cell_index(query.max.x - bounds_.min.x, nx_);
+    const int j0 = cell_index(query.min.y - bounds_.min.y, ny_), j1 = cell_index(query.max.y - bounds_.min.y, ny_);
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t c = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+        for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+          const std::uint32_t item = items_[k];
+          const FirstCell first = first_cell_[item];
+          // Not the first cell the item and the query share: visited there.
+          if (i != std::max(i0, first.i) || j != std::max(j0, first.j)) continue;
+          if ((*boxes_)[item].overlaps(query)) visit(static_cast<std::size_t>(item));
+        }
       }
-    });
+    }
   }
 
  private:
@@ -103,8 +106,10 @@ class UniformGrid {
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> items_;
   std::vector<std::uint32_t> fill_;  // build's scratch: the next free slot of each cell
-  mutable std::vector<std::uint32_t> stamp_;
-  mutable std::uint32_t epoch_ = 0;
+  struct FirstCell {
+    int i = 0, j = 0;  // the lowest column and row of an item's cells
+  };
+  std::vector<FirstCell> first_cell_;
 };
 
 }  // namespace krug::contact
