@@ -103,7 +103,7 @@ void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, doub
 
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
-                                                Index pair) {
+                                                Index pair, int threads) {
   MasterGrid& master = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())];
   if (!master.built) {
     master.boxes.clear();
@@ -120,49 +120,72 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
   // it projects onto (the closest feature, as for particles: contact_geometry). Without this, a node
   // landing on a face near a convex corner took the side face's line distance as a pre-existing
   // overlap and was pushed sideways.
-  std::vector<Found>& found = found_;
-  for (Index c : slaves.nodes) {
-    found.clear();
-    Box swept;
-    swept.include(position(c));
-    swept.include(predicted(c, dt_next));
-    grid.query(swept, [&](std::size_t k) {
-      const BoundarySegment& s = masters.segments[k];
-      if (s.a == c || s.b == c) return;
-      const Vec2 a = position(s.a), b = position(s.b);
-      const SegmentProjection start = project(position(c), a, b, 0.0);
-      const double length = norm(b - a);
-      if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
-      if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
-      const double along = dot(position(c) - a, b - a) / std::max(length * length, 1e-300);
-      const bool over = along >= -end_slack && along <= 1.0 + end_slack;
-      // Beside the end and further behind the line than past the end: past a convex corner, on the
-      // far side of the corner's bisector (a right angle's; a node grazing the line keeps its contact).
-      const double beside = length * std::max(-along, along - 1.0);
-      if (!over && start.gap < 0.0 && -start.gap > beside) return;
-      Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
-      candidate.kind = Kind::node_segment;
-      candidate.friction = friction;
-      candidate.weight = weight;
-      candidate.pair = pair;
-      candidate.start_gap = std::min(start.gap, 0.0);
-      candidate.length = length;
-      found.push_back({candidate, start.gap, over});
-    });
-    double shallowest = -std::numeric_limits<double>::infinity();
-    for (const Found& f : found) {
-      if (f.over) shallowest = std::max(shallowest, f.gap);
+  // In fixed chunks of slave nodes (on the threads), each chunk's candidates kept in node order and the
+  // chunks joined in order: the same list on any number of threads.
+  const auto search = [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
+    for (std::size_t n = first; n < last; ++n) {
+      const Index c = slaves.nodes[n];
+      found.clear();
+      Box swept;
+      swept.include(position(c));
+      swept.include(predicted(c, dt_next));
+      grid.query(swept, [&](std::size_t k) {
+        const BoundarySegment& s = masters.segments[k];
+        if (s.a == c || s.b == c) return;
+        const Vec2 a = position(s.a), b = position(s.b);
+        const SegmentProjection start = project(position(c), a, b, 0.0);
+        const double length = norm(b - a);
+        if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
+        if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
+        const double along = dot(position(c) - a, b - a) / std::max(length * length, 1e-300);
+        const bool over = along >= -end_slack && along <= 1.0 + end_slack;
+        // Beside the end and further behind the line than past the end: past a convex corner, on the
+        // far side of the corner's bisector (a right angle's; a node grazing the line keeps its contact).
+        const double beside = length * std::max(-along, along - 1.0);
+        if (!over && start.gap < 0.0 && -start.gap > beside) return;
+        Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
+        candidate.kind = Kind::node_segment;
+        candidate.friction = friction;
+        candidate.weight = weight;
+        candidate.pair = pair;
+        candidate.start_gap = std::min(start.gap, 0.0);
+        candidate.length = length;
+        found.push_back({candidate, start.gap, over});
+      });
+      double shallowest = -std::numeric_limits<double>::infinity();
+      for (const Found& f : found) {
+        if (f.over) shallowest = std::max(shallowest, f.gap);
+      }
+      for (const Found& f : found) {
+        // Behind this face's line but deeper than behind (or in front of) another face it projects onto:
+        // that face is the one it touches.
+        if (f.gap < 0.0 && f.gap < shallowest - end_slack * f.candidate.length) continue;
+        out.push_back(f.candidate);
+      }
     }
-    for (const Found& f : found) {
-      // Behind this face's line but deeper than behind (or in front of) another face it projects onto:
-      // that face is the one it touches.
-      if (f.gap < 0.0 && f.gap < shallowest - end_slack * f.candidate.length) continue;
-      candidates_.push_back(f.candidate);
-    }
+  };
+  in_chunks(slaves.nodes.size(), threads, search);
+}
+
+// Calls search(first, last, candidates, found) on fixed chunks of [0, count) (their size from count alone),
+// on up to `threads` threads, and appends each chunk's candidates to candidates_ in chunk order.
+template <class Search>
+void ContactSolver::in_chunks(std::size_t count, int threads, Search&& search) {
+  constexpr std::size_t chunk = 64;
+  const std::size_t chunks = (count + chunk - 1) / chunk;
+  if (chunk_candidates_.size() < chunks) chunk_candidates_.resize(chunks);
+  if (chunk_found_.size() < chunks) chunk_found_.resize(chunks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && chunks >= 2)
+  for (std::size_t k = 0; k < chunks; ++k) {
+    chunk_candidates_[k].clear();
+    search(k * chunk, std::min(count, (k + 1) * chunk), chunk_candidates_[k], chunk_found_[k]);
+  }
+  for (std::size_t k = 0; k < chunks; ++k) {
+    candidates_.insert(candidates_.end(), chunk_candidates_[k].begin(), chunk_candidates_[k].end());
   }
 }
 
-void ContactSolver::add_particle_candidates(double dt_next) {
+void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   const Index count = particles_.size;
   if (count == 0) return;
   auto reach_box = [&](ContactPoint point) {
@@ -182,41 +205,48 @@ void ContactSolver::add_particle_candidates(double dt_next) {
     }
   }
   grid_.build(boxes_);
-  for (Index i = 0; i < count; ++i) {
-    const ContactPoint point = ContactPoint::particle(i);
-    const double r = radius(point);
-    grid_.query(reach_box(point), [&](std::size_t k) {
-      const BoundarySegment& s = *segments[k];
-      const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
-      const double length = norm(position(s.b) - position(s.a));
-      if (start.inside && start.gap < -2.0 * r) return;  // centre behind the face: the far side of a body
-      Candidate candidate{point, ContactPoint::node(s.a), ContactPoint::node(s.b)};
-      candidate.kind = Kind::particle_segment;
-      // The start gap on each feature of the segment: contact_geometry takes the one of the feature its
-      // predicted gap is measured on (the face's line, or an end point).
-      candidate.start_gap = std::min(start.gap, 0.0);
-      candidate.start_gap_a = std::min(norm(position(point) - position(s.a)) - r, 0.0);
-      candidate.start_gap_b = std::min(norm(position(point) - position(s.b)) - r, 0.0);
-      candidate.length = std::max(length, r);
-      candidates_.push_back(candidate);
-    });
-  }
+  in_chunks(static_cast<std::size_t>(count), threads,
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+    for (std::size_t n = first; n < last; ++n) {
+      const ContactPoint point = ContactPoint::particle(static_cast<Index>(n));
+      const double r = radius(point);
+      grid_.query(reach_box(point), [&](std::size_t k) {
+        const BoundarySegment& s = *segments[k];
+        const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
+        const double length = norm(position(s.b) - position(s.a));
+        if (start.inside && start.gap < -2.0 * r) return;  // centre behind the face: the far side of a body
+        Candidate candidate{point, ContactPoint::node(s.a), ContactPoint::node(s.b)};
+        candidate.kind = Kind::particle_segment;
+        // The start gap on each feature of the segment: contact_geometry takes the one of the feature its
+        // predicted gap is measured on (the face's line, or an end point).
+        candidate.start_gap = std::min(start.gap, 0.0);
+        candidate.start_gap_a = std::min(norm(position(point) - position(s.a)) - r, 0.0);
+        candidate.start_gap_b = std::min(norm(position(point) - position(s.b)) - r, 0.0);
+        candidate.length = std::max(length, r);
+        out.push_back(candidate);
+      });
+    }
+  });
   // Particles against each other.
   boxes_.clear();
   for (Index i = 0; i < count; ++i) boxes_.push_back(reach_box(ContactPoint::particle(i)));
   grid_.build(boxes_);
-  for (Index i = 0; i < count; ++i) {
-    grid_.query(boxes_[static_cast<std::size_t>(i)], [&](std::size_t j) {
-      if (static_cast<Index>(j) <= i) return;
-      const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
-      const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
-      Candidate candidate{a, b, {}};
-      candidate.kind = Kind::particle_particle;
-      candidate.start_gap = std::min(start_gap, 0.0);
-      candidate.length = std::max(radius(a), radius(b));
-      candidates_.push_back(candidate);
-    });
-  }
+  in_chunks(static_cast<std::size_t>(count), threads,
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+    for (std::size_t n = first; n < last; ++n) {
+      const Index i = static_cast<Index>(n);
+      grid_.query(boxes_[n], [&](std::size_t j) {
+        if (static_cast<Index>(j) <= i) return;
+        const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
+        const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
+        Candidate candidate{a, b, {}};
+        candidate.kind = Kind::particle_particle;
+        candidate.start_gap = std::min(start_gap, 0.0);
+        candidate.length = std::max(radius(a), radius(b));
+        out.push_back(candidate);
+      });
+    }
+  });
   // Particles against the walls and the axis.
   for (Index i = 0; i < count; ++i) {
     const ContactPoint point = ContactPoint::particle(i);
@@ -244,7 +274,7 @@ void ContactSolver::add_particle_candidates(double dt_next) {
   }
 }
 
-void ContactSolver::find_candidates(double dt_next) {
+void ContactSolver::find_candidates(double dt_next, int threads) {
   candidates_.clear();
   master_grids_.resize(boundaries_.size());
   for (MasterGrid& m : master_grids_) m.built = false;
@@ -255,10 +285,10 @@ void ContactSolver::find_candidates(double dt_next) {
     const BodyBoundary& first = boundaries_[static_cast<std::size_t>(pair.first)];
     const BodyBoundary& second = boundaries_[static_cast<std::size_t>(pair.second)];
     if (pair.first == pair.second) {
-      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next, index);
+      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next, index, threads);
     } else {
-      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index);
-      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index);
+      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index, threads);
+      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index, threads);
     }
   }
   for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
@@ -284,7 +314,7 @@ void ContactSolver::find_candidates(double dt_next) {
       }
     }
   }
-  if (setup_.particles) add_particle_candidates(dt_next);
+  if (setup_.particles) add_particle_candidates(dt_next, threads);
 }
 
 // --- the reaction kernel ------------------------------------------------------------------------
@@ -404,7 +434,8 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   return g.valid ? gap_after - target : std::numeric_limits<double>::infinity();
 }
 
-ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next) {
+ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next,
+                                       int threads) {
   nodes_ = nodes;
   particles_ = particles;
   for (const ContactPoint p : touched_) {
@@ -419,7 +450,7 @@ ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles,
   particle_overlap_x_.assign(static_cast<std::size_t>(particles.size), 0.0);
   particle_overlap_y_.assign(static_cast<std::size_t>(particles.size), 0.0);
   ContactStatistics stats;
-  find_candidates(dt_next);
+  find_candidates(dt_next, threads);
   stats.candidates = static_cast<long>(candidates_.size());
   if (candidates_.empty()) return stats;
 

@@ -223,7 +223,7 @@ void Simulation::solve_contact_reactions() {
     topology_changed_ = false;
   }
   last_contact_ = contact_.solve(contact::nodes_view(state_.mesh.nodes), contact::particles_view(state_.particles), dt_mid,
-                                 state_.time_step_next);
+                                 state_.time_step_next, controls_.threads);
   state_.deepest_contact_gap = std::min(state_.deepest_contact_gap, last_contact_.deepest_gap);
 }
 

@@ -133,7 +133,7 @@ class ContactSolver {
   // Applies the reactions to the velocities of nodes and particles (which hold the predicted
   // velocities u*). Records the reaction force on each touched point for the ledger. The boundaries
   // (rebuild_boundaries) are those of the mesh the node view shows.
-  ContactStatistics solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next);
+  ContactStatistics solve(NodesView nodes, ParticlesView particles, double dt_mid, double dt_next, int threads = 1);
 
   // The points that received a reaction in the last solve, in the order they first did.
   const std::vector<ContactPoint>& touched_points() const { return touched_; }
@@ -187,10 +187,11 @@ class ContactSolver {
     SegmentFeature feature = SegmentFeature::face;  // particle-segment: what `gap` is measured from
     bool valid = true;
   };
-  void find_candidates(double dt_next);
+  // The candidate search runs on up to `threads` threads (in_chunks) with the same list on any number.
+  void find_candidates(double dt_next, int threads);
   void add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters, double friction,
-                                   double weight, bool self, double dt_next, Index pair);
-  void add_particle_candidates(double dt_next);
+                                   double weight, bool self, double dt_next, Index pair, int threads);
+  void add_particle_candidates(double dt_next, int threads);
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
   // Coulomb: the tangential reaction that stops the slip at xi, from `accumulated`, within f x
   // normal_total (unchanged without friction).
@@ -264,7 +265,10 @@ class ContactSolver {
     double gap;  // signed distance from the face's line at x^n
     bool over;   // projects onto the segment at x^n (within end_slack)
   };
-  std::vector<Found> found_;                               // one slave node's candidates (scratch)
+  template <class Search>
+  void in_chunks(std::size_t count, int threads, Search&& search);
+  std::vector<std::vector<Candidate>> chunk_candidates_;   // in_chunks: each chunk's candidates (scratch)
+  std::vector<std::vector<Found>> chunk_found_;            // and one slave node's candidates in the chunk
   std::vector<const BoundarySegment*> particle_segments_;  // the segments of the particles' broad phase
   std::vector<double> reaction_x_, reaction_y_;
   std::vector<double> overlap_x_, overlap_y_;
