@@ -182,6 +182,20 @@ ZoneUpdateResult update_zones(Mesh& mesh, HydroZoneFields& hydro, StrengthZoneFi
       batch.volume_change[i] = std::abs(volume - old_volume) / old_volume;
     }
   };
+  // Zone z's deviator and its yield law's inputs (batch index i) at the start of the step.
+  const auto start_deviator = [&](Index z) {
+    return Deviator{strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z],
+                    strength.deviator_zz[z]};
+  };
+  const auto start_state = [&](Index z, [[maybe_unused]] int i, [[maybe_unused]] const StrainRate& rate) {
+    PlasticState state;
+    state.plastic_strain = strength.plastic_strain[z];
+    if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
+      state.strain_rate = equivalent_strain_rate(rate);
+      state.temperature = strength_model.temperature_from_energy(batch.energy[i]);
+    }
+    return state;
+  };
   // Deviator over [t^n, t^{n+1}]: rotate by the spin, Hooke trial, radial return (material/strength.hpp).
   const auto deviator = [&](Index first, int count) {
     for (int i = 0; i < count; ++i) {
@@ -194,14 +208,8 @@ ZoneUpdateResult update_zones(Mesh& mesh, HydroZoneFields& hydro, StrengthZoneFi
       batch.rate_xy[i] = rate.xy;
       batch.rate_zz[i] = rate.zz;
       batch.spin[i] = spin;
-      const Deviator previous{strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z],
-                              strength.deviator_zz[z]};
-      PlasticState state;
-      state.plastic_strain = strength.plastic_strain[z];
-      if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
-        state.strain_rate = equivalent_strain_rate(rate);
-        state.temperature = strength_model.temperature_from_energy(batch.energy[i]);
-      }
+      const Deviator previous = start_deviator(z);
+      const PlasticState state = start_state(z, i, rate);
       double large = 0.0;
       const PlasticReturn plastic = detail::update_deviator_small_rotation(strength_model, previous, rate, spin,
                                                                            step.time_step_next, state, large);
@@ -268,15 +276,8 @@ ZoneUpdateResult update_zones(Mesh& mesh, HydroZoneFields& hydro, StrengthZoneFi
                                 batch.plastic_increment[i], batch.plastic_work_density[i], false};
           if (batch.large_rotation[i] != 0.0) {
             const StrainRate rate{batch.rate_xx[i], batch.rate_yy[i], batch.rate_xy[i], batch.rate_zz[i]};
-            const Deviator previous{strength.deviator_xx[z], strength.deviator_yy[z], strength.deviator_xy[z],
-                                    strength.deviator_zz[z]};
-            PlasticState state;
-            state.plastic_strain = strength.plastic_strain[z];
-            if constexpr (std::is_same_v<StrengthModel, JohnsonCook>) {
-              state.strain_rate = equivalent_strain_rate(rate);
-              state.temperature = strength_model.temperature_from_energy(batch.energy[i]);
-            }
-            plastic = update_deviator(strength_model, previous, rate, batch.spin[i], step.time_step_next, state);
+            plastic = update_deviator(strength_model, start_deviator(z), rate, batch.spin[i], step.time_step_next,
+                                      start_state(z, i, rate));
           }
           strength.deviator_xx[z] = plastic.deviator.xx;
           strength.deviator_yy[z] = plastic.deviator.yy;
