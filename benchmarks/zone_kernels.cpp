@@ -9,6 +9,11 @@
 // (krug::fracture::zone_stretches) against the root-free test that they are below a limit
 // (krug::fracture::stretches_below), on a mesh of 64 x 64 RZ zones sheared by up to 5 %.
 //
+// zone_update/copper_rz/200x200: step 5 of the time step alone (krug::update_zones, the batched zone
+// update: geometry, compatible energy, deviator, EOS, stable step) on the 40 000 zones of the copper
+// cylinder (benchmarks/problems.hpp) after 50 cycles, in the solver's blocks of zones. The zone and
+// strength state is restored from a copy every 16 calls (untimed), so every call starts from nearby states.
+//
 //   build/benchmarks/zone_kernels --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -17,9 +22,12 @@
 #include <vector>
 
 #include "krug/fracture/damage.hpp"
+#include "krug/hydro/zone_update.hpp"
 #include "krug/material/strength.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/quad.hpp"
+#include "krug/solver/parallel.hpp"
+#include "problems.hpp"
 
 namespace {
 
@@ -111,8 +119,45 @@ void stretches(benchmark::State& state) {
 
 }  // namespace
 
+void zone_update(benchmark::State& state) {
+  krug::Simulation sim(krug::problems::copper_cylinder_rz(200));
+  for (int cycle = 0; cycle < 50; ++cycle) sim.step();
+  const krug::Mesh start_mesh = sim.mesh();
+  const krug::ZoneState start_state = sim.zone_state();
+  krug::Mesh mesh = start_mesh;
+  krug::ZoneState zones = start_state;
+  const krug::Material& material = sim.materials().front();
+  const auto eos = std::get<krug::MieGruneisen>(material.eos);
+  const auto strength = std::get<krug::LinearHardening>(material.strength);
+  krug::ZoneUpdateParams params;
+  params.time_step_mid = 0.5 * (sim.last_time_step() + sim.next_time_step());
+  params.time_step_next = sim.next_time_step();
+  params.shear_modulus = material.shear_modulus();
+  const krug::Index count = mesh.zones.size();
+  int calls = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    if (++calls % 16 == 0) {
+      state.PauseTiming();
+      mesh = start_mesh;
+      zones = start_state;
+      state.ResumeTiming();
+    }
+    // In the solver's blocks (krug/solver/parallel.hpp), each small enough to stay in the caches.
+    krug::for_each_block(0, count, 1, [&](krug::Index, krug::Index first, krug::Index last) {
+      const krug::ZoneUpdateResult r = krug::update_zones<krug::GeometryKind::axisymmetric>(
+          mesh, zones.hydro, zones.strength, zones.fracture, first, last, eos, strength, params);
+      sum += r.internal_energy;
+    });
+  }
+  benchmark::DoNotOptimize(sum);
+  state.counters["ns_per_zone"] = benchmark::Counter(static_cast<double>(count) * static_cast<double>(state.iterations()),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 BENCHMARK(rotation<true>)->Name("rotation/polynomial");
 BENCHMARK(rotation<false>)->Name("rotation/library");
 BENCHMARK(stretches<false>)->Name("stretches/exact");
 BENCHMARK(stretches<true>)->Name("stretches/bound");
+BENCHMARK(zone_update)->Name("zone_update/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();
