@@ -38,7 +38,7 @@ bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-// A block with a blast in one corner: 120 x 120 = 14 400 zones, eight blocks of 1 800 (block_size),
+// A block with a blast in one corner: 120 x 120 = 14 400 zones, four blocks of 3 600 (block_count),
 // shared by the two threads.
 SimulationSetup blast(GeometryKind geometry, AxisymmetricForm form, bool strength, int threads) {
   SimulationSetup s;
