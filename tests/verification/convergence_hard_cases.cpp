@@ -33,6 +33,19 @@ void cure(scenario::Scenario& scenario) {
 
 std::string mesh_name(int a, int b) { return std::to_string(a) + " x " + std::to_string(b); }
 
+// The RZ rectangles of 100 x 100 and 200 x 200 at the study's scale (at least 50 x 50), each once:
+// the reduced scale can give the same mesh twice.
+template <class Run>
+void for_each_finer_rectangle(Run&& run) {
+  int previous = 0;
+  for (const int full : {100, 200}) {
+    const int n = scaled(full, 50);
+    if (n == previous) continue;
+    previous = n;
+    run(n);
+  }
+}
+
 }  // namespace
 
 // Measured at 100 x 100: 2 511 cycles, shock -0.3 to 0 zones, plateau -2.0 % mean, 3.3 % worst.
@@ -65,16 +78,12 @@ TEST_CASE("Hard cases, finer: Noh spherical on the RZ rectangle at 100 x 100 wit
 // Measured: 100 x 100 in 865 cycles, 200 x 200 in 2 013, the shock within 1.4 zones on every ray. With default controls these stop at t = 0.045 and 0.0079 (F7).
 TEST_CASE("Hard cases, finer: Sedov spherical on RZ rectangles of 100 x 100 and 200 x 200 with the two controls",
           "[convergence][subzonal][sedov]") {
-  int previous = 0;
-  for (const int full : {100, 200}) {
-    const int n = scaled(full, 50);
-    if (n == previous) continue;  // the reduced scale gives the same mesh twice
-    previous = n;
+  for_each_finer_rectangle([](int n) {
     scenario::Scenario scenario = rz_rectangle::load("sedov_spherical_rectangle.json", n);
     cure(scenario);
     rz_rectangle::check_sedov(scenario, n, "Sedov, spherical (RZ rectangle " + mesh_name(n, n) + ", subzonal 0.5 + heat 2)",
                               true);
-  }
+  });
 }
 
 // The verification mesh is 100 x 40 (test_noh.cpp); with default controls 200 x 60 stops at t = 0.168
@@ -108,13 +117,9 @@ TEST_CASE("Hard cases, finer: Noh spherical on the RZ rectangle with the tensor 
 
 TEST_CASE("Hard cases, finer: Sedov spherical on RZ rectangles with the tensor viscosity",
           "[convergence][tensor][sedov]") {
-  int previous = 0;
-  for (const int full : {100, 200}) {
-    const int m = scaled(full, 50);
-    if (m == previous) continue;
-    previous = m;
+  for_each_finer_rectangle([](int m) {
     scenario::Scenario sedov = rz_rectangle::load("sedov_spherical_rectangle.json", m);
     sedov.setup.controls.viscosity.model = ViscosityModel::tensor;
     rz_rectangle::check_sedov(sedov, m, "Sedov, spherical (RZ rectangle " + mesh_name(m, m) + ", tensor q)", true);
-  }
+  });
 }
