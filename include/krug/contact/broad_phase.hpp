@@ -54,14 +54,15 @@ class UniformGrid {
     nx_ = static_cast<int>(width * inverse_cell_) + 1;
     ny_ = static_cast<int>(height * inverse_cell_) + 1;
     cell_start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) visit_cells(boxes[i], [&](std::size_t c) { ++cell_start_[c + 1]; });
+    for (std::size_t i = 0; i < n; ++i) visit_cells(boxes[i], [&](std::size_t c, int, int) { ++cell_start_[c + 1]; });
     for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
     items_.resize(cell_start_.back());
     std::vector<std::uint32_t>& fill = fill_;
     fill.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
-      visit_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = static_cast<std::uint32_t>(i); });
-      first_cell_[i] = {cell_index(boxes[i].min.x - bounds_.min.x, nx_), cell_index(boxes[i].min.y - bounds_.min.y, ny_)};
+      visit_cells(boxes[i], [&](std::size_t c, int, int) { items_[fill[c]++] = static_cast<std::uint32_t>(i); });
+      first_cell_[i] = {cell_index(boxes[i].min.x - bounds_.min.x, nx_),
+                        cell_index(boxes[i].min.y - bounds_.min.y, ny_)};
     }
   }
 
@@ -69,29 +70,28 @@ class UniformGrid {
   template <class Visit>
   void query(const Box& query, Visit&& visit) const {
     if (items_.empty() || !bounds_.overlaps(query)) return;  // every stored box lies within bounds_
-    const int i0 = cell_index(query.min.x - bounds_.min.x, nx_), i1 = cell_index(query.max.x - bounds_.min.x, nx_);
-    const int j0 = cell_index(query.min.y - bounds_.min.y, ny_), j1 = cell_index(query.max.y - bounds_.min.y, ny_);
-    for (int j = j0; j <= j1; ++j) {
-      for (int i = i0; i <= i1; ++i) {
-        const std::size_t c = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
-        for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-          const std::uint32_t item = items_[k];
-          const FirstCell first = first_cell_[item];
-          // Not the first cell the item and the query share: visited there.
-          if (i != std::max(i0, first.i) || j != std::max(j0, first.j)) continue;
-          if ((*boxes_)[item].overlaps(query)) visit(static_cast<std::size_t>(item));
-        }
+    const int i0 = cell_index(query.min.x - bounds_.min.x, nx_), j0 = cell_index(query.min.y - bounds_.min.y, ny_);
+    visit_cells(query, [&](std::size_t c, int i, int j) {
+      for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+        const std::uint32_t item = items_[k];
+        const FirstCell first = first_cell_[item];
+        // Not the first cell the item and the query share: visited there.
+        if (i != std::max(i0, first.i) || j != std::max(j0, first.j)) continue;
+        if ((*boxes_)[item].overlaps(query)) visit(static_cast<std::size_t>(item));
       }
-    }
+    });
   }
 
  private:
+  // Calls visit(cell, column, row) for the cells the box covers, row by row.
   template <class Visit>
   void visit_cells(const Box& b, Visit&& visit) const {
     const int i0 = cell_index(b.min.x - bounds_.min.x, nx_), i1 = cell_index(b.max.x - bounds_.min.x, nx_);
     const int j0 = cell_index(b.min.y - bounds_.min.y, ny_), j1 = cell_index(b.max.y - bounds_.min.y, ny_);
     for (int j = j0; j <= j1; ++j) {
-      for (int i = i0; i <= i1; ++i) visit(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i));
+      for (int i = i0; i <= i1; ++i) {
+        visit(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i), i, j);
+      }
     }
   }
   int cell_index(double offset, int count) const {
