@@ -104,7 +104,9 @@ TEST_CASE("One thread and two threads give bitwise the same run with contact and
   }
   REQUIRE(one.cycle() == 900);
   CHECK(two.cycle() == one.cycle());
-  CHECK(one.particles().size() > 50);  // the run did convert zones into particles
+  // The run did convert zones into particles: the example has 184 particles at its end, cycle 1 838
+  // (printed by benchmarks/state_digest); more than 50 by cycle 900 shows that particle contacts are exercised.
+  CHECK(one.particles().size() > 50);
   CHECK(bitwise_equal(state_of(one), state_of(two)));
   CHECK(bitwise_equal(one.particles().x, two.particles().x));
   CHECK(bitwise_equal(one.particles().u, two.particles().u));
