@@ -30,7 +30,7 @@ constexpr std::uint32_t byte_order_mark = 0x01020304;
 // through theirs, zone_state.hpp.)
 static_assert(sizeof(std::vector<double>) != 24 || sizeof(Particles) == 10 * 24,
               "Particles changed: update src/output/checkpoint.cpp");
-static_assert(sizeof(EnergyLedger) == 9 * sizeof(double), "EnergyLedger changed: update src/output/checkpoint.cpp");
+static_assert(sizeof(EnergyLedger) == 10 * sizeof(double), "EnergyLedger changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(Ledger) == sizeof(EnergyLedger) + 7 * sizeof(double), "Ledger changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(FractureCounts) == 6 * 8, "FractureCounts changed: update src/output/checkpoint.cpp");
 static_assert(sizeof(std::vector<double>) != 24 ||

@@ -72,6 +72,7 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
                            {"plastic", number(whole * e.plastic)},
                            {"viscous", number(whole * e.viscous)},
                            {"hourglass", number(whole * e.hourglass)},
+                           {"rezone", number(whole * e.rezone)},
                            {"contact", number(whole * e.contact)},
                            {"contact_overlap", number(whole * e.overlap)},
                            {"converted", number(whole * e.converted)},

@@ -267,6 +267,11 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
     description.name = body.name;
     description.material = body.material;
     description.erosion = body.erosion();
+    if (auto rezone = spec.optional_object("rezone")) {
+      description.rezone.altitude_ratio = rezone->number("altitude_ratio", Range{0.0, 1.0, true});
+      description.rezone.relaxation = rezone->number("relaxation", description.rezone.relaxation, Range{0.0, 1.0, true});
+      rezone->finish();
+    }
     description.where = spec.path();
     description.mesh = read_mesh(spec.object("mesh"), geometry, allow.allows("angle"));
     if (auto initial = spec.optional_object("initial")) description.initial = read_initial(*initial, geometry);

@@ -326,6 +326,13 @@ SimulationSetup build_simulation(const SceneDescription& scene) {
     body.name = description.name;
     body.material = description.material;
     body.set_erosion(description.erosion);
+    body.rezone_ratio = description.rezone.altitude_ratio;
+    body.rezone_relaxation = description.rezone.relaxation;
+    const auto m = static_cast<std::size_t>(description.material);
+    if (body.rezone_ratio > 0.0 && m < scene.fracture.size() && fracture::enabled(scene.fracture[m])) {
+      fail(where.back() + ".rezone", "no rezone on a body whose material has a failure law (the remap does not "
+                                     "carry damage)");
+    }
     const generate::Patch patch =
         generate_mesh(description.mesh, setup.mesh, static_cast<Index>(i), scene.max_zones, where.back() + ".mesh");
     body.node_begin = patch.node_begin;

@@ -110,6 +110,7 @@ void Simulation::step() {
     correct_and_move();
     update_zones();
     conduct_heat();
+    rezone();
     if (fracture_enabled_) {
       evaluate_fracture();
       convert_fractured_zones();
@@ -298,6 +299,27 @@ void Simulation::conduct_heat() {
       }
     }, material.eos);
   }
+}
+
+void Simulation::rezone() {
+  RezoneParams params{.time_step = state_.time_step_next, .max_volume_change = controls_.max_volume_change};
+  bool moved = false;
+  for (const Body& body : bodies_) {
+    if (!(body.rezone_ratio > 0.0)) continue;
+    const Material& material = materials_[static_cast<std::size_t>(body.material)];
+    params.cfl = cfl_number(material, controls_);
+    params.relaxation = body.rezone_relaxation;
+    const RezoneResult result = rezone_body(state_.mesh, state_.zone_state, body, material, geometry_, node_corners_, params,
+                                            rezone_scratch_);
+    state_.ledger.energy.rezone += result.kinetic_to_internal;
+    moved = moved || result.moved_nodes > 0;
+  }
+  if (!moved) return;
+  state_.ledger.energy.internal = krug::internal_energy(state_.mesh.zones, 0, state_.mesh.zones.size());
+  measure_ledger(state_.mesh, state_.particles, state_.ledger);
+  const StableStep stable = smallest_stable_step(state_.mesh.zones, state_.zone_state.hydro);
+  state_.stable_time_step = stable.time_step;
+  if (stable.zone >= 0) state_.controlling_zone = stable.zone;
 }
 
 void Simulation::choose_time_step() {

@@ -101,6 +101,10 @@ struct BodyDescription {
   std::string name;
   Index material = 0;  // index into SceneDescription::materials
   fracture::ErosionLimits erosion;
+  struct Rezone {
+    double altitude_ratio = 0.0;  // Body::rezone_ratio: 0, no rezoning
+    double relaxation = 0.05;     // Body::rezone_relaxation
+  } rezone;
   MeshDescription mesh;
   InitialState initial;
   std::vector<SideBoundary> boundary;  // applied in order; a node on two sides takes both constraints

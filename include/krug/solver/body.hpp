@@ -20,6 +20,10 @@ struct Body {
   // particle (mass and momentum exact), counted as eroded mass (fracture::ErosionLimits).
   double erosion_altitude_ratio = 0.0;
   double erosion_plastic_strain = fracture::disabled;
+  // Rezoning (off by default): the interior nodes of zones flattened below this ratio of their initial
+  // smallest altitude are relaxed and the zones around them remapped (solver/rezone.hpp).
+  double rezone_ratio = 0.0;
+  double rezone_relaxation = 0.05;  // the fraction of the way to the neighbours' mean a node moves per step
 
   fracture::ErosionLimits erosion() const { return {erosion_altitude_ratio, erosion_plastic_strain}; }
   void set_erosion(const fracture::ErosionLimits& e) {

@@ -25,6 +25,7 @@ struct EnergyLedger {
   double plastic = 0.0;     // plastic work (part of IE)
   double viscous = 0.0;     // artificial-viscosity work (part of IE)
   double hourglass = 0.0;   // hourglass work (part of IE)
+  double rezone = 0.0;      // kinetic energy the rezone's remap turned into heat (part of IE)
   double contact = 0.0;     // W_contact: <= 0 apart from the overlap line
   double overlap = 0.0;     // the part of W_contact done by contacts with a pre-existing overlap (any sign)
   double converted = 0.0;   // energy removed with zones converted to particles

@@ -17,6 +17,7 @@
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/fracture_step.hpp"
+#include "krug/solver/rezone.hpp"
 #include "krug/solver/ledger.hpp"
 #include "krug/solver/time_step.hpp"
 
@@ -148,6 +149,7 @@ class Simulation {
   void correct_and_move();        // 4. the contact and boundary work of R; x^{n+1} = x^n + dt^{n+1/2} u^{n+1/2}
   void update_zones();            // 5. geometry, density, energy, EOS, stable step
   void conduct_heat();            // 5b. artificial heat conduction between zones (if on)
+  void rezone();                  // 5c. relax and remap where a body's mesh degrades (bodies that ask)
   void evaluate_fracture();       // 6. failure laws on intact zones; damage is permanent
   void convert_fractured_zones(); // 7. fully fractured surface zones -> particles (one layer per step)
   void choose_time_step();        // 8. dt^{n+3/2}
@@ -178,6 +180,7 @@ class Simulation {
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
   std::vector<ArtificialPower> artificial_power_;  // per body, of step 1 (booked once dt^n is final)
+  RezoneScratch rezone_scratch_;                   // the rezone's work arrays (bodies that ask for it)
 
   TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
   double last_step_mid_ = 0.0;  // dt^n of the last step (last_step_mid)
