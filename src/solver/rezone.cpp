@@ -310,10 +310,33 @@ RezoneResult rezone_body(Mesh& mesh, ZoneState& state, const Body& body, const M
   const double du = free_mass_x > 0.0 ? (momentum_before.x - momentum_after.x) / free_mass_x : 0.0;
   const double dv = !axisymmetric && free_mass_y > 0.0 ? (momentum_before.y - momentum_after.y) / free_mass_y : 0.0;
   double kinetic_after = 0.0;
+  Vec2 mean{};  // the free components' mass-weighted mean velocity
   for (const Index n : s.affected) {
     if (nodes.inv_mass_x[n] != 0.0) nodes.u[n] += du;
     if (nodes.inv_mass_y[n] != 0.0) nodes.v[n] += dv;
     kinetic_after += 0.5 * nodes.mass[n] * dot(nodes.velocity(n), nodes.velocity(n));
+    if (nodes.inv_mass_x[n] != 0.0) mean.x += nodes.mass[n] * nodes.u[n] / free_mass_x;
+    if (nodes.inv_mass_y[n] != 0.0) mean.y += nodes.mass[n] * nodes.v[n] / free_mass_y;
+  }
+  // A remap may shift mass toward faster nodes; the kinetic energy it would gain is taken back by
+  // scaling the free components' deviations from their mean (which keeps the momentum), so that the
+  // remap never draws on the internal energy.
+  if (kinetic_after > kinetic_before) {
+    double deviation = 0.0;
+    for (const Index n : s.affected) {
+      if (nodes.inv_mass_x[n] != 0.0) deviation += 0.5 * nodes.mass[n] * (nodes.u[n] - mean.x) * (nodes.u[n] - mean.x);
+      if (nodes.inv_mass_y[n] != 0.0) deviation += 0.5 * nodes.mass[n] * (nodes.v[n] - mean.y) * (nodes.v[n] - mean.y);
+    }
+    const double excess = kinetic_after - kinetic_before;
+    if (deviation > excess) {
+      const double scale = std::sqrt(1.0 - excess / deviation);
+      kinetic_after = 0.0;
+      for (const Index n : s.affected) {
+        if (nodes.inv_mass_x[n] != 0.0) nodes.u[n] = mean.x + scale * (nodes.u[n] - mean.x);
+        if (nodes.inv_mass_y[n] != 0.0) nodes.v[n] = mean.y + scale * (nodes.v[n] - mean.y);
+        kinetic_after += 0.5 * nodes.mass[n] * dot(nodes.velocity(n), nodes.velocity(n));
+      }
+    }
   }
   const double to_internal = kinetic_before - kinetic_after;
 
