@@ -130,6 +130,20 @@ TEST_CASE("particles and fracture counters survive a checkpoint", "[app][restart
   check_same_run(reference, stopped);
 }
 
+TEST_CASE("a rezoned run restarts as if never stopped", "[app][restart][rezone]") {
+  // The rezoned 454 m/s Taylor bar (examples/verification/taylor_bar_454_rezone.json), run to 50 us and
+  // stopped at 40 us, after its remap has moved nodes: the rezone keeps no state beyond the mesh's.
+  const fs::path file = fs::path(KRUG_EXAMPLES_DIR) / "verification" / "taylor_bar_454_rezone.json";
+  const auto scenario = scenario_with(file, [](Json& d) { d["end_time"] = 5e-5; });
+  const fs::path reference = krug::test::scratch("rezone_reference");
+  const fs::path stopped = krug::test::scratch("rezone_interrupted");
+  REQUIRE(krug::output::run_scenario(scenario, to(reference)).status == RunStatus::completed);
+  REQUIRE(krug::test::read_json(reference / "summary.json")["ledger"]["energy"]["rezone"].get<double>() > 0.0);
+  REQUIRE(interrupted_run(scenario, stopped, 4e-5).message == "interrupted");
+  CHECK(krug::output::restart_scenario(stopped / "checkpoint.bin", to(stopped)).status == RunStatus::completed);
+  check_same_run(reference, stopped);
+}
+
 TEST_CASE("Johnson-Cook damage survives a checkpoint taken while it accumulates", "[app][restart]") {
   // tests/app/data/johnson_cook_plate.json: the plate's zones carry D (zone field `damage`) and the
   // plastic strain already counted in it; a restart from a checkpoint taken when some zone has
