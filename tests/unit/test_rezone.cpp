@@ -53,6 +53,15 @@ UniformBlock uniform_block(GeometryKind geometry) {
   return b;
 }
 
+// rezone_body on the block's whole state, with the block's relaxation.
+RezoneResult rezone(UniformBlock& b) {
+  RezoneParams params;
+  params.relaxation = b.body.rezone_relaxation;
+  RezoneScratch scratch;
+  return rezone_body(b.state.mesh, b.state.zone_state, b.body, b.material, b.geometry, node_corners(b.state.mesh), params,
+                     scratch);
+}
+
 }  // namespace
 
 TEST_CASE("rezone: a uniform state moving uniformly stays exactly uniform, and the books close",
@@ -64,11 +73,7 @@ TEST_CASE("rezone: a uniform state moving uniformly stays exactly uniform, and t
     const double rho = b.material.reference_density;
     double mass_before = 0.0;
     for (Index z = 0; z < mesh.zones.size(); ++z) mass_before += mesh.zones.mass[z];
-    RezoneParams params;
-    params.relaxation = b.body.rezone_relaxation;
-    RezoneScratch scratch;
-    const NodeCorners corners = node_corners(mesh);
-    const RezoneResult result = rezone_body(mesh, b.state.zone_state, b.body, b.material, geometry, corners, params, scratch);
+    const RezoneResult result = rezone(b);
     // 5 x 7 interior nodes on the 9 x 7 node grid (the RZ axis row and every side stay).
     CHECK(result.moved_nodes == 35);
     CHECK(result.remapped_zones == 48);
@@ -144,11 +149,7 @@ TEST_CASE("rezone: a shear flow's momentum is kept exactly, its kinetic energy c
       return std::pair{momentum, energy};
     };
     const auto [momentum_before, energy_before] = momentum_and_energy();
-    RezoneParams params;
-    params.relaxation = b.body.rezone_relaxation;
-    RezoneScratch scratch;
-    const RezoneResult result =
-        rezone_body(mesh, b.state.zone_state, b.body, b.material, geometry, node_corners(mesh), params, scratch);
+    const RezoneResult result = rezone(b);
     REQUIRE(result.moved_nodes == 35);
     const auto [momentum_after, energy_after] = momentum_and_energy();
     CHECK(momentum_after.x == Approx(momentum_before.x).epsilon(1e-14));

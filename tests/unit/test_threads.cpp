@@ -63,6 +63,23 @@ SimulationSetup blast(GeometryKind geometry, AxisymmetricForm form, bool strengt
   return s;
 }
 
+// The example `file` (under examples/) on one thread and on two, stepped together for `cycles` cycles.
+struct ThreadPair {
+  Simulation one, two;
+};
+ThreadPair run_on_one_and_two_threads(const std::filesystem::path& file, int cycles) {
+  const scenario::Scenario scenario = scenario::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / file);
+  SimulationSetup one_setup = scenario.setup, two_setup = scenario.setup;
+  one_setup.controls.threads = 1;
+  two_setup.controls.threads = 2;
+  ThreadPair pair{Simulation(std::move(one_setup)), Simulation(std::move(two_setup))};
+  for (int cycle = 0; cycle < cycles && !pair.one.finished(); ++cycle) {
+    pair.one.step();
+    pair.two.step();
+  }
+  return pair;
+}
+
 }  // namespace
 
 TEST_CASE("One thread and two threads give bitwise the same run", "[threads]") {
@@ -91,17 +108,8 @@ TEST_CASE("One thread and two threads give bitwise the same run", "[threads]") {
 // failure laws and the choice of zones to convert in fixed blocks): a striker through a plate, 900
 // cycles, by which time zones have failed and converted and particles collide.
 TEST_CASE("One thread and two threads give bitwise the same run with contact and fracture", "[threads]") {
-  const scenario::Scenario scenario =
-      scenario::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "fracture" / "high_velocity.json");
-  SimulationSetup one_setup = scenario.setup, two_setup = scenario.setup;
-  one_setup.controls.threads = 1;
-  two_setup.controls.threads = 2;
-  Simulation one(std::move(one_setup));
-  Simulation two(std::move(two_setup));
-  for (int cycle = 0; cycle < 900 && !one.finished(); ++cycle) {
-    one.step();
-    two.step();
-  }
+  const ThreadPair run = run_on_one_and_two_threads(std::filesystem::path("fracture") / "high_velocity.json", 900);
+  const Simulation &one = run.one, &two = run.two;
   REQUIRE(one.cycle() == 900);
   CHECK(two.cycle() == one.cycle());
   // The run did convert zones into particles: the example has 184 particles at its end, cycle 1 838
@@ -115,17 +123,8 @@ TEST_CASE("One thread and two threads give bitwise the same run with contact and
 TEST_CASE("One thread and two threads give bitwise the same rezoned run", "[threads][rezone]") {
   // The rezoned 454 m/s Taylor bar (docs/verification.md E6): its remap runs after the threaded zone
   // update, and has moved nodes by cycle 6 000 (the rezone line is positive).
-  const scenario::Scenario scenario = scenario::load_scenario(std::filesystem::path(KRUG_EXAMPLES_DIR) / "verification" /
-                                                              "taylor_bar_454_rezone.json");
-  SimulationSetup one_setup = scenario.setup, two_setup = scenario.setup;
-  one_setup.controls.threads = 1;
-  two_setup.controls.threads = 2;
-  Simulation one(std::move(one_setup));
-  Simulation two(std::move(two_setup));
-  for (int cycle = 0; cycle < 6000 && !one.finished(); ++cycle) {
-    one.step();
-    two.step();
-  }
+  const ThreadPair run = run_on_one_and_two_threads(std::filesystem::path("verification") / "taylor_bar_454_rezone.json", 6000);
+  const Simulation &one = run.one, &two = run.two;
   REQUIRE(one.cycle() == 6000);
   CHECK(one.ledger().energy.rezone > 0.0);
   CHECK(bitwise_equal(state_of(one), state_of(two)));
