@@ -17,8 +17,8 @@
 #include "krug/solver/body.hpp"
 #include "krug/solver/controls.hpp"
 #include "krug/solver/fracture_step.hpp"
-#include "krug/solver/rezone.hpp"
 #include "krug/solver/ledger.hpp"
+#include "krug/solver/rezone.hpp"
 #include "krug/solver/time_step.hpp"
 
 namespace krug {
