@@ -7,6 +7,7 @@
 #include <limits>
 #include <variant>
 
+#include "krug/hydro/zone_update.hpp"
 #include "krug/solver/hydro_step.hpp"
 
 namespace krug {
@@ -342,17 +343,14 @@ RezoneResult rezone_body(Mesh& mesh, ZoneState& state, const Body& body, const M
 
   // 8. The touched zones' energy, EOS state and stable step (as update_zones).
   const double mu = material.shear_modulus();
-  for (const Index z : s.touched) {
+  for (std::size_t t = 0; t < count; ++t) {
+    const Index z = s.touched[t];
     zones.specific_energy[z] += to_internal / touched_mass;
     std::visit([&](const auto& eos) { evaluate_eos(eos, mu, zones, state.hydro, z); }, material.eos);
-    const double b = state.hydro.viscous_speed[z];
-    const double c = state.hydro.sound_speed[z];
-    const double signal = b + std::sqrt(b * b + c * c);
-    double dt = signal > 0.0 ? params.cfl * quad::stable_length(mesh.corner_positions(z), zones.area[z]) / signal
-                             : std::numeric_limits<double>::infinity();
-    const double volume_change = state.hydro.volume_change[z];
-    if (volume_change > 0.0) dt = std::min(dt, params.max_volume_change * params.time_step / volume_change);
-    state.hydro.stable_time_step[z] = dt;
+    state.hydro.stable_time_step[z] =
+        zone_stable_step(quad::stable_length(s.new_x[t], zones.area[z]), state.hydro.sound_speed[z],
+                         state.hydro.viscous_speed[z], state.hydro.volume_change[z], params.cfl,
+                         params.max_volume_change, params.time_step);
   }
   result.moved_nodes = static_cast<Index>(s.moved_nodes.size());
   result.remapped_zones = static_cast<Index>(count);

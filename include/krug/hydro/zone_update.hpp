@@ -24,6 +24,17 @@ struct ZoneUpdateParams {
   double shear_modulus = 0.0;     // adds 4 mu / (3 rho) to the squared wave speed
 };
 
+// A zone's stable step (docs/theory.md §2 step 8): the CFL step over its stable length with the
+// viscous signal speed b (Wilkins), b + (b^2 + c^2)^1/2, and the limit on |dV/V| per step.
+[[gnu::always_inline]] inline double zone_stable_step(double length, double sound_speed, double viscous_speed,
+                                                      double volume_change, double cfl, double max_volume_change,
+                                                      double time_step_next) {
+  const double b = viscous_speed;
+  const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
+  const double dt = signal > 0.0 ? cfl * length / signal : std::numeric_limits<double>::infinity();
+  return volume_change > 0.0 ? std::min(dt, max_volume_change * time_step_next / volume_change) : dt;
+}
+
 struct ZoneUpdateResult {
   double stable_time_step = std::numeric_limits<double>::infinity();
   Index controlling_zone = -1;
@@ -239,13 +250,8 @@ ZoneUpdateResult update_zones(Mesh& mesh, HydroZoneFields& hydro, StrengthZoneFi
       batch.pressure[i] = pressure;
       batch.sound_speed[i] = sound_speed;
 
-      // Stable step: CFL with the viscous signal speed b (Wilkins), and the |dV/V| limit.
-      const double b = hydro.viscous_speed[z];
-      const double signal = b + std::sqrt(b * b + sound_speed * sound_speed);
-      double dt = signal > 0.0 ? step.cfl * batch.length[i] / signal : std::numeric_limits<double>::infinity();
-      const double volume_change = batch.volume_change[i];
-      dt = volume_change > 0.0 ? std::min(dt, step.max_volume_change * step.time_step_next / volume_change) : dt;
-      batch.stable_step[i] = dt;
+      batch.stable_step[i] = zone_stable_step(batch.length[i], sound_speed, hydro.viscous_speed[z], batch.volume_change[i],
+                                              step.cfl, step.max_volume_change, step.time_step_next);
     }
   };
 
