@@ -143,7 +143,8 @@ def scenario(args):
         "contact": {"pairs": pairs, "gap_tolerance": args.gap_tolerance, "method": args.contact_method},
         "controls": controls,
         "penetration": {"projectile": "bullet"},
-        "output": {"snapshot_interval": end_time / 20.0, "history_interval": end_time / 2000.0,
+        "output": {"snapshot_interval": (args.snapshot_interval * 1e-6 if args.snapshot_interval
+                                         else end_time / 20.0), "history_interval": end_time / 2000.0,
                    "pictures": {"field": "equivalent_plastic_strain"}},
         "stop": stop,
     }
@@ -346,6 +347,76 @@ def velocity_history(run_dirs, csv_path):
     print(csv_path)
 
 
+def erosion_origin(run_dirs, csv_path, speed_fraction):
+    """Where the projectile's eroded mass comes from and where it goes, from a run's particle snapshots.
+
+    Each eroded particle of the projectile is followed from the first snapshot that holds it (its
+    velocity there is taken as its velocity at birth: write snapshots densely, 0.5 us or less) to the
+    last. Classes, as fractions of the projectile's initial mass:
+    cut: born moving along the flight faster than `speed_fraction` x U0, i.e. cut from the moving
+    bullet's flank or nose; held: born slower (the ring of lead the target's hole holds back);
+    born_backward: born moving against the flight; turned_backward: born moving forward, moving
+    backward in the last snapshot (pushed back after it left the mesh). The delay columns give the
+    mean and largest time between a particle's birth and its first snapshot.
+    """
+    import xml.etree.ElementTree as ET
+    fields = ["run", "zones_per_mm", "eroded_fraction", "cut_fraction", "held_fraction", "born_backward_fraction",
+              "turned_backward_fraction", "backward_fraction", "particles", "mean_delay_us", "max_delay_us"]
+    with open(csv_path, "w") as out:
+        out.write(",".join(fields) + "\n")
+        for run in run_dirs:
+            scen = json.load(open(os.path.join(run, "scenario.resolved.json")))
+            summary = json.load(open(os.path.join(run, "summary.json")))
+            name = scen["penetration"]["projectile"]
+            index = [b["name"] for b in scen["bodies"]].index(name)
+            v0 = np.array(scen["bodies"][index]["initial"]["velocity"], dtype=float)
+            u0 = float(np.hypot(*v0))
+            flight = v0 / u0
+            per_radian = 2.0 * math.pi if scen.get("geometry") == "axisymmetric" else 1.0
+            initial_mass = summary["penetration"]["initial_mass"]
+            pvd = ET.parse(os.path.join(run, "run.pvd")).getroot()
+            files = [(float(ds.get("timestep")), ds.get("file")) for ds in pvd.iter("DataSet")
+                     if ds.get("file").endswith(".vtp")]
+            first, last = {}, {}
+            for time, rel in sorted(files):
+                data = krug_vtk.read(os.path.join(run, rel))
+                if len(data.points) == 0:
+                    continue
+                pd = data.point_data
+                seen = {}
+                for j in np.flatnonzero(np.ravel(pd["body"]) == index):
+                    key = (float(pd["birth_time"][j]), float(pd["mass"][j]))
+                    k = seen.get(key, 0)
+                    seen[key] = k + 1
+                    key = key + (k,)
+                    speed = float(np.dot(pd["velocity"][j, :2], flight))
+                    if key not in first:
+                        first[key] = (time, speed)
+                    last[key] = speed
+            total = {c: 0.0 for c in ("cut", "held", "born_backward", "turned_backward", "backward", "all")}
+            delays = []
+            for key, (time, speed) in first.items():
+                mass = key[1] * per_radian / initial_mass
+                delays.append(time - key[0])
+                total["all"] += mass
+                total["cut" if speed > speed_fraction * u0 else "held"] += mass
+                if speed < 0.0:
+                    total["born_backward"] += mass
+                elif last[key] < 0.0:
+                    total["turned_backward"] += mass
+                if last[key] < 0.0:
+                    total["backward"] += mass
+            zones_per_mm = scen["bodies"][index]["mesh"].get("radial_zones", 0) / (
+                scen["bodies"][index]["mesh"].get("radius", 1.0) * 1e3)
+            row = [os.path.basename(os.path.normpath(run)), f"{zones_per_mm:.1f}"] + [
+                f"{total[c]:.4f}" for c in ("all", "cut", "held", "born_backward", "turned_backward", "backward")] + [
+                str(len(first)), f"{np.mean(delays) * 1e6 if delays else 0.0:.3f}",
+                f"{np.max(delays) * 1e6 if delays else 0.0:.3f}"]
+            out.write(",".join(row) + "\n")
+            print(",".join(row))
+    print(csv_path)
+
+
 def read_particles(vtp_path):
     """Centres (z, r), radii and bodies of origin from Krug's VTK PolyData particle file."""
     data = krug_vtk.read(vtp_path)
@@ -446,6 +517,8 @@ def main():
     g.add_argument("--velocity-window-only", action="store_true",
                    help="stop on the velocity window alone, without waiting for the bullet to clear the plates")
     g.add_argument("--contact-method", choices=["gauss_seidel", "summation"], default="gauss_seidel")
+    g.add_argument("--snapshot-interval", type=float, default=None,
+                   help="us between snapshots (default: the run's end time / 20); erosion-origin wants 0.5 or less")
     g.add_argument("--name", default=None)
     r = sub.add_parser("report")
     r.add_argument("runs", nargs="+")
@@ -459,7 +532,15 @@ def main():
     vh = sub.add_parser("velocity-history")
     vh.add_argument("runs", nargs="+")
     vh.add_argument("--csv", required=True)
+    eo = sub.add_parser("erosion-origin")
+    eo.add_argument("runs", nargs="+")
+    eo.add_argument("--csv", required=True)
+    eo.add_argument("--speed-fraction", type=float, default=0.5,
+                    help="eroded lead born faster than this fraction of U0 along the flight counts as cut "
+                         "from the moving bullet, the rest as held back by the target")
     args = parser.parse_args()
+    if args.command == "erosion-origin":
+        return erosion_origin(args.runs, args.csv, args.speed_fraction)
     if args.command == "velocity-history":
         return velocity_history(args.runs, args.csv)
     if args.command == "report":
