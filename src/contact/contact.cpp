@@ -104,16 +104,7 @@ void ContactSolver::apply(ContactPoint point, Vec2 direction, double force, doub
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
                                                 Index pair, int threads) {
-  MasterGrid& master = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())];
-  if (!master.built) {
-    master.boxes.clear();
-    for (const BoundarySegment& s : masters.segments) {
-      master.boxes.push_back(swept_box(s, dt_next).expanded(start_depth * norm(position(s.b) - position(s.a))));
-    }
-    master.grid.build(master.boxes);
-    master.built = true;
-  }
-  const UniformGrid& grid = master.grid;
+  const UniformGrid& grid = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())].grid;
   // Each slave node's candidates are gathered, then kept only where the node can touch the face: a
   // node beside a segment's end and behind its line (past a convex corner of the master) is never in
   // contact with that face, and a node behind a face's line is handled by the master's shallowest face
@@ -185,32 +176,71 @@ void ContactSolver::in_chunks(std::size_t count, int threads, Search&& search) {
   }
 }
 
+Box ContactSolver::reach_box(ContactPoint point, double dt_next) const {
+  Box box;
+  box.include(position(point));
+  box.include(predicted(point, dt_next));
+  return box.expanded((1.0 + particle_search_margin) * radius(point));
+}
+
+void ContactSolver::build_grids(double dt_next, int threads) {
+  master_grids_.resize(boundaries_.size());
+  for (MasterGrid& m : master_grids_) m.used = false;
+  for (const BodyPair& pair : setup_.pairs) {
+    master_grids_[static_cast<std::size_t>(pair.first)].used = true;
+    master_grids_[static_cast<std::size_t>(pair.second)].used = true;
+  }
+  // The builds to make: one per master body, then the particles' two.
+  const std::size_t masters = master_grids_.size();
+  const bool particles = setup_.particles && particles_.size > 0;
+  const std::size_t builds = masters + (particles ? 2 : 0);
+  const auto build = [&](std::size_t k) {
+    if (k < masters) {
+      MasterGrid& master = master_grids_[k];
+      if (!master.used) return;
+      master.boxes.clear();
+      for (const BoundarySegment& s : boundaries_[k].segments) {
+        master.boxes.push_back(swept_box(s, dt_next).expanded(start_depth * norm(position(s.b) - position(s.a))));
+      }
+      master.grid.build(master.boxes);
+    } else if (k == masters) {
+      segment_boxes_.clear();
+      particle_segments_.clear();
+      for (const BodyBoundary& boundary : boundaries_) {
+        for (const BoundarySegment& s : boundary.segments) {
+          segment_boxes_.push_back(swept_box(s, dt_next));
+          particle_segments_.push_back(&s);
+        }
+      }
+      segment_grid_.build(segment_boxes_);
+    } else {
+      particle_boxes_.clear();
+      for (Index i = 0; i < particles_.size; ++i) particle_boxes_.push_back(reach_box(ContactPoint::particle(i), dt_next));
+      particle_grid_.build(particle_boxes_);
+    }
+  };
+  // The particles' segment grid first: it holds every body's segments, the largest build.
+  std::vector<std::size_t>& order = build_order_;
+  order.clear();
+  if (particles) order.push_back(masters);
+  for (std::size_t k = 0; k < masters; ++k) order.push_back(k);
+  if (particles) order.push_back(masters + 1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && builds >= 2)
+  for (std::size_t k = 0; k < order.size(); ++k) build(order[k]);
+}
+
 void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   const Index count = particles_.size;
   if (count == 0) return;
-  auto reach_box = [&](ContactPoint point) {
-    Box box;
-    box.include(position(point));
-    box.include(predicted(point, dt_next));
-    return box.expanded((1.0 + particle_search_margin) * radius(point));
-  };
-  // Particles against the segments of every body.
-  boxes_.clear();
-  std::vector<const BoundarySegment*>& segments = particle_segments_;
-  segments.clear();
-  for (const BodyBoundary& boundary : boundaries_) {
-    for (const BoundarySegment& s : boundary.segments) {
-      boxes_.push_back(swept_box(s, dt_next));
-      segments.push_back(&s);
-    }
-  }
-  grid_.build(boxes_);
+  const auto reach_box = [&](ContactPoint point) { return this->reach_box(point, dt_next); };
+  // Particles against the segments of every body (the grids are build_grids').
+  const std::vector<const BoundarySegment*>& segments = particle_segments_;
   in_chunks(static_cast<std::size_t>(count), threads,
             [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
     for (std::size_t n = first; n < last; ++n) {
       const ContactPoint point = ContactPoint::particle(static_cast<Index>(n));
       const double r = radius(point);
-      grid_.query(reach_box(point), [&](std::size_t k) {
+      segment_grid_.query(reach_box(point), [&](std::size_t k) {
         const BoundarySegment& s = *segments[k];
         const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
         const double length = norm(position(s.b) - position(s.a));
@@ -228,14 +258,11 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
     }
   });
   // Particles against each other.
-  boxes_.clear();
-  for (Index i = 0; i < count; ++i) boxes_.push_back(reach_box(ContactPoint::particle(i)));
-  grid_.build(boxes_);
   in_chunks(static_cast<std::size_t>(count), threads,
             [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
     for (std::size_t n = first; n < last; ++n) {
       const Index i = static_cast<Index>(n);
-      grid_.query(boxes_[n], [&](std::size_t j) {
+      particle_grid_.query(particle_boxes_[n], [&](std::size_t j) {
         if (static_cast<Index>(j) <= i) return;
         const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
         const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
@@ -276,8 +303,7 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
 
 void ContactSolver::find_candidates(double dt_next, int threads) {
   candidates_.clear();
-  master_grids_.resize(boundaries_.size());
-  for (MasterGrid& m : master_grids_) m.built = false;
+  build_grids(dt_next, threads);
   const bool summation = setup_.controls.method == ReactionMethod::summation;
   for (std::size_t k = 0; k < setup_.pairs.size(); ++k) {
     const BodyPair& pair = setup_.pairs[k];

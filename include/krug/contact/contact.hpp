@@ -250,14 +250,21 @@ class ContactSolver {
   std::vector<Candidate> candidates_;
   std::vector<Geometry> summation_geometry_;  // the summation method's geometry of each candidate, as applied
   std::vector<Index> working_;  // candidates the later Gauss-Seidel sweeps visit
-  std::vector<Box> boxes_;
-  UniformGrid grid_;
+  // The particles' broad phases: against the segments of every body, and against each other.
+  std::vector<Box> segment_boxes_, particle_boxes_;
+  UniformGrid segment_grid_, particle_grid_;
+  // Builds every broad phase this step's search uses (the masters' node-segment grids and the particles'
+  // two), each on its own thread when there are several: a grid is the same whichever thread builds it.
+  void build_grids(double dt_next, int threads);
+  std::vector<std::size_t> build_order_;  // build_grids' scratch
+  // A particle's search box: the box its disc sweeps over the step, grown by the search margin.
+  Box reach_box(ContactPoint point, double dt_next) const;
   // The node-segment broad phase of each body as a master, built at most once per find_candidates (a
   // body that is the master of two pairs, as in a two-body pair beside a self-contact pair, shares it).
   struct MasterGrid {
     std::vector<Box> boxes;
     UniformGrid grid;
-    bool built = false;
+    bool used = false;  // the master of some pair this step (its grid is then built)
   };
   std::vector<MasterGrid> master_grids_;
   struct Found {
