@@ -181,6 +181,7 @@ contact::ContactSetup read_contact(JsonObject spec, const std::vector<Body>& bod
   const std::string method = spec.choice("method", {"gauss_seidel", "summation"}, "gauss_seidel");
   setup.controls.method = method == "summation" ? contact::ReactionMethod::summation : contact::ReactionMethod::gauss_seidel;
   setup.controls.max_sweeps = static_cast<int>(spec.integer("max_sweeps", setup.controls.max_sweeps, 1, 10000));
+  setup.controls.solve_stalled = spec.flag("solve_stalled", setup.controls.solve_stalled);
   setup.controls.gap_tolerance = spec.number("gap_tolerance", setup.controls.gap_tolerance, Range::positive());
   setup.controls.overlap_fraction = spec.number("overlap_fraction", setup.controls.overlap_fraction, Range{0.0, 1.0, true});
   setup.controls.overlap_speed = spec.number("overlap_speed", setup.controls.overlap_speed, Range::non_negative());

@@ -35,6 +35,11 @@ enum class ReactionMethod {
 struct ContactControls {
   ReactionMethod method = ReactionMethod::gauss_seidel;
   int max_sweeps = 50;
+  // After sweeps that reach max_sweeps unconverged, solve the pushing frictionless contacts together
+  // (ContactSolver::solve_pushing_together). Off by default: it changes the results of every run whose
+  // sweeps ever stall, and the paper's case is chaotic enough that such a change moves its figures
+  // within their numerical scatter (docs/verification.md, Contact, C2).
+  bool solve_stalled = false;
   double gap_tolerance = 1e-5;  // sweeps stop when no gap is below -tolerance x segment length
   double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step,
   double overlap_speed = 1.0;     // and no faster than this (m/s): a fraction per step alone is a speed
@@ -54,6 +59,7 @@ struct ContactStatistics {
   long candidates = 0;
   long active = 0;               // candidates with a positive normal reaction at the end
   int sweeps = 0;
+  int together = 0;              // times the stalled sweeps' pushing contacts were solved together (solve_stalled)
   double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
   double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)
 };
@@ -187,6 +193,17 @@ class ContactSolver {
     SegmentFeature feature = SegmentFeature::face;  // particle-segment: what `gap` is measured from
     bool valid = true;
   };
+  // After sweeps that stalled: the pushing frictionless contacts' reactions solved together. The
+  // change of reactions dR that closes every pushing contact to its target gap in the current geometry
+  // solves W dR = -(gap - target) / (dt^{n+1/2} dt^{n+1}), W = J M^-1 J^T over those contacts (J: a
+  // contact's normal on its point, -(1 - xi) and -xi of it on the segment's ends), by conjugate
+  // gradients on W as an operator (W is symmetric and semi-definite: two-way contacts of non-matching
+  // faces are redundant, and the sweeps crawl along its near-null directions, docs/verification.md C2).
+  // The new totals (clamped at zero) are applied as a sweep applies them. Returns whether it ran.
+  bool solve_pushing_together(double dt_mid, double dt_next);
+  std::vector<Index> together_;                          // its scratch: the contacts,
+  std::vector<double> together_rhs_, together_x_, together_r_, together_p_, together_q_;  // the vectors,
+  std::vector<Vec2> together_point_;                     // and a force per point (nodes, then particles)
   // The candidate search runs on up to `threads` threads (in_chunks) with the same list on any number.
   void find_candidates(double dt_next, int threads);
   void add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters, double friction,
