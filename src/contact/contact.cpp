@@ -703,6 +703,7 @@ ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles,
         worst = full_check();
       }
     }
+    stats.converged = worst <= setup_.controls.gap_tolerance;
   }
   overlapping_ = false;
   for (const Candidate& c : candidates_) {

@@ -215,6 +215,10 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(steps.smallest_body);
   w.value(steps.smallest_zone);
   w.value(steps.smallest_limit);
+  w.value(progress.contact.active_cycles);
+  w.value(progress.contact.unconverged_cycles);
+  w.value(progress.contact.solved_together_cycles);
+  w.value(progress.contact.most_sweeps);
   w.value(progress.next_gauge_time);
   w.value(progress.gauge_bytes);
   w.vector(progress.gauge_impulses);
@@ -317,6 +321,10 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   steps.smallest_body = r.value<std::int32_t>();
   steps.smallest_zone = r.value<std::int32_t>();
   steps.smallest_limit = r.value<std::int32_t>();
+  p.contact.active_cycles = r.value<std::int64_t>();
+  p.contact.unconverged_cycles = r.value<std::int64_t>();
+  p.contact.solved_together_cycles = r.value<std::int64_t>();
+  p.contact.most_sweeps = r.value<std::int32_t>();
   p.next_gauge_time = r.value<double>();
   p.gauge_bytes = r.value<std::uint64_t>();
   r.vector(p.gauge_impulses);

@@ -148,6 +148,13 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
     smallest["zone"] = steps.smallest_zone;
   }
   s["time_step"] = {{"cycles_set_by", set_by}, {"smallest", smallest}};
+  if (simulation.has_contact()) {
+    const run::ContactRecord& c = result.contact;
+    s["contact"] = {{"active_cycles", c.active_cycles},
+                    {"unconverged_cycles", c.unconverged_cycles},
+                    {"solved_together_cycles", c.solved_together_cycles},
+                    {"most_sweeps", c.most_sweeps}};
+  }
   if (result.penetration) {
     const PenetrationReport& p = *result.penetration;
     s["penetration"] = {{"projectile", p.projectile},
@@ -308,6 +315,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const Simulation& simulation,
   snapshots_ = resume.snapshots;
   particle_snapshots_ = resume.particle_snapshots;
   time_steps_ = resume.time_steps;
+  contact_ = resume.contact;
   next_history_time_ = resume.next_history_time;
   next_snapshot_time_ = resume.next_snapshot_time;
   if (!scenario.gauges.empty()) {
@@ -378,6 +386,7 @@ void RunRecorder::add_progress(RunProgress& p) {
   p.particle_snapshots = particle_snapshots_;
   p.history_bytes = history_bytes_;
   p.time_steps = time_steps_;
+  p.contact = contact_;
   if (gauges_) {
     gauge_file_.flush();
     p.next_gauge_time = next_gauge_time_;
@@ -480,6 +489,11 @@ void RunRecorder::count_time_step(const Simulation& simulation) {
 
 void RunRecorder::cycle(const Simulation& simulation) {
   count_time_step(simulation);
+  const contact::ContactStatistics& solve = simulation.last_contact();
+  if (solve.active > 0) ++contact_.active_cycles;
+  if (!solve.converged) ++contact_.unconverged_cycles;
+  if (solve.together > 0) ++contact_.solved_together_cycles;
+  contact_.most_sweeps = std::max(contact_.most_sweeps, static_cast<std::int32_t>(solve.sweeps));
   if (gauges_) {
     if (gauges_->needs_every_step()) gauges_->accumulate(simulation);
     if (simulation.time() >= next_gauge_time_ * (1.0 - 1e-12) && !simulation.finished()) {
@@ -527,6 +541,7 @@ void RunRecorder::finish(const Simulation& simulation, const RunResult& result) 
   picture(simulation, "final");
   RunResult full = result;
   full.time_steps = time_steps_;
+  full.contact = contact_;
   write_text_atomically(directory_ / "summary.json", summary_json(simulation, full));
 }
 

@@ -179,8 +179,8 @@ TEST_CASE("erosion on plastic strain: the Taylor bar's foot leaves the mesh and 
 
 TEST_CASE("a penetration run restarted from a checkpoint ends with the same penetration figures", "[app][penetration]") {
   // E1 with the flyer as the projectile (first test case), interrupted inside the contact (1 us of the
-  // 1.55 us) and continued: the penetration record (deepest nose, perforation time) and the time-step
-  // record travel in the checkpoint, so the summary is the uninterrupted run's, bit for bit.
+  // 1.55 us) and continued: the penetration record (deepest nose, perforation time), the time-step and
+  // contact records travel in the checkpoint, so the summary is the uninterrupted run's, bit for bit.
   Json document = slab_impact();
   document["penetration"] = {{"projectile", "flyer"}};
   document["stop"] = {{"no_contact_time", 5e-7}};
@@ -207,5 +207,9 @@ TEST_CASE("a penetration run restarted from a checkpoint ends with the same pene
   const Json b = krug::test::summary_without_timing(parts / "summary.json");
   CHECK(a["penetration"] == b["penetration"]);
   CHECK(a["time_step"] == b["time_step"]);
+  // The contact record travels too: the flyer pushes on the plate in every cycle of the contact.
+  CHECK(a["contact"]["active_cycles"].get<long>() > 0);
+  CHECK(a["contact"]["most_sweeps"].get<int>() >= 1);
+  CHECK(a["contact"] == b["contact"]);
   CHECK(a == b);
 }

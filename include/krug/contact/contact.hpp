@@ -59,6 +59,7 @@ struct ContactStatistics {
   long candidates = 0;
   long active = 0;               // candidates with a positive normal reaction at the end
   int sweeps = 0;
+  bool converged = true;         // the sweeps ended within gap_tolerance (false: at max_sweeps)
   int together = 0;              // times the stalled sweeps' pushing contacts were solved together (solve_stalled)
   double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
   double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)

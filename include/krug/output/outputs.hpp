@@ -113,6 +113,7 @@ class RunRecorder final : public run::RunObserver {
   std::vector<std::pair<double, std::string>> snapshots_;  // time, file relative to directory_
   std::vector<std::pair<double, std::string>> particle_snapshots_;
   TimeStepRecord time_steps_;
+  run::ContactRecord contact_;
   PictureHook picture_;
   // Gauges: none (no work at all) without a "gauges" block.
   std::optional<GaugeSampler> gauges_;

@@ -39,6 +39,14 @@ struct TimeStepRecord {
   std::int32_t smallest_limit = 0;        // TimeStepLimit
 };
 
+// The contact solve, cycle by cycle: the cycles with a pushing contact, those whose Gauss-Seidel
+// sweeps ended at max_sweeps outside the gap tolerance, those in which contact.solve_stalled solved
+// the pushing contacts together, and the most sweeps a cycle took.
+struct ContactRecord {
+  std::int64_t active_cycles = 0, unconverged_cycles = 0, solved_together_cycles = 0;
+  std::int32_t most_sweeps = 0;
+};
+
 // What the run loop and its observer need, besides the simulation, to continue their outputs. The
 // loop fills the checkpoint schedule, the wall time, the stop window and the penetration record; the
 // observer (observer.hpp) the rest.
@@ -55,6 +63,7 @@ struct RunProgress {
   bool has_penetration = false;
   PenetrationRecord penetration;
   TimeStepRecord time_steps;
+  ContactRecord contact;
   // Gauges (scenario key "gauges"; zero and empty without): the next row's time, the length of
   // gauges.csv, and the impulse of each force gauge so far (per radian or per m, two per channel).
   double next_gauge_time = 0.0;
@@ -75,6 +84,7 @@ struct RunResult {
   std::vector<std::string> warnings;   // for the user (e.g. a restart whose scenario was edited)
   std::optional<PenetrationReport> penetration;  // scenarios with a "penetration" block
   TimeStepRecord time_steps;           // filled by the recorder
+  ContactRecord contact;               // filled by the recorder
 };
 
 }  // namespace krug::run

@@ -101,6 +101,7 @@ class Simulation {
   // The CFL-stable step of the current state (s; +infinity where no zone sets a wave speed).
   double stable_time_step() const { return state_.stable_time_step; }
   const contact::ContactStatistics& last_contact() const { return last_contact_; }
+  bool has_contact() const { return !contact_.empty(); }  // any contact pair, wall or free particles
   // For gauges: the held velocity components, the contact solver (its last solve's reactions) and the
   // step dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 of the last cycle, over which F^n and R acted (s).
   const std::vector<NodeConstraint>& constraints() const { return boundary_.constraints(); }
