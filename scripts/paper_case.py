@@ -417,6 +417,37 @@ def erosion_origin(run_dirs, csv_path, speed_fraction):
     print(csv_path)
 
 
+def scatter(run_dirs, csv_path):
+    """The spread of the headline figures over runs that differ by a perturbation that should not
+    matter (`generate --velocity` 355 x (1 + k 1e-9), k = 0..N): runs are grouped by their name without
+    the trailing `_d<k>`, and each group gets the mean, sample standard deviation, smallest and largest
+    of each figure. Writes one row per group."""
+    groups = {}
+    for run in run_dirs:
+        name = os.path.basename(os.path.normpath(run))
+        group = name.rsplit("_d", 1)[0] if "_d" in name else name
+        summary = json.load(open(os.path.join(run, "summary.json")))
+        p = summary["penetration"]
+        w = p["whole"]
+        groups.setdefault(group, []).append({
+            "piece": p["piece_velocity_loss"], "whole": w["velocity_loss"],
+            "eroded": p["eroded_mass"] / p["initial_mass"], "backward": w["backward_mass"] / p["initial_mass"],
+            "cycles": float(summary["cycles"])})
+    figures = ["piece", "whole", "eroded", "backward", "cycles"]
+    fields = ["run", "runs"] + [f"{f}_{s}" for f in figures for s in ("mean", "std", "min", "max")]
+    with open(csv_path, "w") as out:
+        out.write(",".join(fields) + "\n")
+        for group, rows in sorted(groups.items()):
+            row = [group, str(len(rows))]
+            for f in figures:
+                values = np.array([r[f] for r in rows])
+                std = float(values.std(ddof=1)) if len(values) > 1 else 0.0
+                row += [f"{values.mean():.6g}", f"{std:.6g}", f"{values.min():.6g}", f"{values.max():.6g}"]
+            out.write(",".join(row) + "\n")
+            print(",".join(row))
+    print(csv_path)
+
+
 def read_particles(vtp_path):
     """Centres (z, r), radii and bodies of origin from Krug's VTK PolyData particle file."""
     data = krug_vtk.read(vtp_path)
@@ -538,7 +569,12 @@ def main():
     eo.add_argument("--speed-fraction", type=float, default=0.5,
                     help="eroded lead born faster than this fraction of U0 along the flight counts as cut "
                          "from the moving bullet, the rest as held back by the target")
+    sc = sub.add_parser("scatter")
+    sc.add_argument("runs", nargs="+")
+    sc.add_argument("--csv", required=True)
     args = parser.parse_args()
+    if args.command == "scatter":
+        return scatter(args.runs, args.csv)
     if args.command == "erosion-origin":
         return erosion_origin(args.runs, args.csv, args.speed_fraction)
     if args.command == "velocity-history":
