@@ -25,6 +25,7 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -425,7 +426,8 @@ def scatter(run_dirs, csv_path):
     groups = {}
     for run in run_dirs:
         name = os.path.basename(os.path.normpath(run))
-        group = name.rsplit("_d", 1)[0] if "_d" in name else name
+        match = re.match(r"(.*)_d\d+$", name)
+        group = match.group(1) if match else name
         summary = json.load(open(os.path.join(run, "summary.json")))
         p = summary["penetration"]
         w = p["whole"]

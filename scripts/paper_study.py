@@ -3,7 +3,7 @@
 
     scripts/paper_study.py OUTDIR [--krug build/apps/krug/krug] [--jobs 2] [--zones-per-mm 10]
                                   [--groups converged,ordering,fig6,mesh,default,velocity,sensitivity,knobs,johnson_cook]
-                                  [--generate-options "--hourglass 0.02"]
+                                  [--generate-options "--hourglass 0.02"] [--members N] [--only REGEX]
 
 Every scenario comes from scripts/paper_case.py; each run goes to OUTDIR/runs/NAME (a run whose
 directory exists is not repeated, so the study resumes where it stopped: delete the directory of an
@@ -26,12 +26,16 @@ Fig. 6 group. Groups:
   sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target
                for the gap
 The study resolution (--zones-per-mm, default 5) applies to all but the mesh group.
+With --members N each case runs N times, NAME_d0 .. NAME_d(N-1), at impact speeds (1 + k 1e-9) times
+its own: the case is chaotic (docs/validation.md, "The case's own scatter"), and OUTDIR/GROUP_scatter.csv
+gives each case's mean, standard deviation and range over its members (scripts/paper_case.py scatter).
 """
 import argparse
 import concurrent.futures
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 import time
@@ -141,6 +145,22 @@ def cases(groups, zones):
     return out
 
 
+def with_speed_factor(options, factor):
+    """The options with the impact speed (--velocity, default 355 m/s) multiplied by `factor`; the last
+    --velocity given wins, as in argparse."""
+    speed = 355.0
+    kept = []
+    i = 0
+    while i < len(options):
+        if options[i] == "--velocity":
+            speed = float(options[i + 1])
+            i += 2
+            continue
+        kept.append(options[i])
+        i += 1
+    return kept + ["--velocity", repr(speed * factor)]
+
+
 def generate(outdir, name, options):
     """Writes the scenario; returns its physics (the scenario without title and description) as text.
     Options "--set PATH=VALUE" (a dotted JSON path, a JSON value) edit the generated scenario;
@@ -241,12 +261,20 @@ def main():
     parser.add_argument("--generate-options", default="",
                         help="options of scripts/paper_case.py generate put before every case's own, e.g. "
                              "\"--hourglass 0.02\" (a case's own option of the same name wins)")
+    parser.add_argument("--only", default=None, help="run only the cases whose name matches this regular expression")
+    parser.add_argument("--members", type=int, default=1,
+                        help="runs per case at impact speeds (1 + k 1e-9) times the case's, k = 0..N-1 (default 1)")
     args = parser.parse_args()
     groups = args.groups.split(",")
     for sub in ("scenarios", "runs", "logs"):
         os.makedirs(os.path.join(args.outdir, sub), exist_ok=True)
     base = args.generate_options.split()
     todo = [(group, name, base + options) for group, name, options in cases(groups, args.zones_per_mm)]
+    if args.only:
+        todo = [(group, name, options) for group, name, options in todo if re.search(args.only, name)]
+    if args.members > 1:
+        todo = [(group, f"{name}_d{k}", with_speed_factor(options, 1.0 + k * 1e-9))
+                for group, name, options in todo for k in range(args.members)]
     # The same physics under two names (the 3 mm, 5 zones/mm monolithic case is in three groups) runs
     # once; the other names link to it.
     first_of = {}
@@ -276,6 +304,9 @@ def main():
         if runs:
             subprocess.run([sys.executable, PAPER_CASE, "report", *runs, "--csv", os.path.join(args.outdir, f"{group}.csv")],
                            check=True)
+            if args.members > 1:
+                subprocess.run([sys.executable, PAPER_CASE, "scatter", *runs, "--csv",
+                                os.path.join(args.outdir, f"{group}_scatter.csv")], check=True)
     if "fig6" in groups and os.path.exists(os.path.join(args.outdir, "fig6.csv")):
         plot_fig6(args.outdir, args.zones_per_mm)
 
