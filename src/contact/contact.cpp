@@ -193,11 +193,9 @@ void ContactSolver::build_grids(double dt_next, int threads) {
   // The builds to make: one per master body, then the particles' two.
   const std::size_t masters = master_grids_.size();
   const bool particles = setup_.particles && particles_.size > 0;
-  const std::size_t builds = masters + (particles ? 2 : 0);
   const auto build = [&](std::size_t k) {
     if (k < masters) {
       MasterGrid& master = master_grids_[k];
-      if (!master.used) return;
       master.boxes.clear();
       for (const BoundarySegment& s : boundaries_[k].segments) {
         master.boxes.push_back(swept_box(s, dt_next).expanded(start_depth * norm(position(s.b) - position(s.a))));
@@ -223,9 +221,11 @@ void ContactSolver::build_grids(double dt_next, int threads) {
   std::vector<std::size_t>& order = build_order_;
   order.clear();
   if (particles) order.push_back(masters);
-  for (std::size_t k = 0; k < masters; ++k) order.push_back(k);
+  for (std::size_t k = 0; k < masters; ++k) {
+    if (master_grids_[k].used) order.push_back(k);
+  }
   if (particles) order.push_back(masters + 1);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && builds >= 2)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && order.size() >= 2)
   for (std::size_t k = 0; k < order.size(); ++k) build(order[k]);
 }
 
@@ -441,23 +441,26 @@ double ContactSolver::update(Candidate& c, double dt_mid, double dt_next) {
   const double target = overlap_target(g.start_gap, dt_next);
   const double increment = g.valid ? -c.weight * (g.gap - target) / (dt_mid * dt_next * w) : -c.normal;
   const double total = clamp_normal(c.normal, increment);
-  const double change = total - c.normal;
-  const double gap_after = g.gap + dt_mid * dt_next * w * change;
+  const double gap_after = g.gap + dt_mid * dt_next * w * (total - c.normal);
 
-  const double tangent_total = friction_total(c, g, c.tangent, total, dt_mid);
+  replace_reaction(c, g, total, friction_total(c, g, c.tangent, total, dt_mid), dt_mid);
+  return g.valid ? gap_after - target : std::numeric_limits<double>::infinity();
+}
+
+void ContactSolver::replace_reaction(Candidate& c, const Geometry& g, double normal_total, double tangent_total,
+                                     double dt_mid) {
   overlapping_ = g.start_gap < 0.0;
   if (reoriented(c)) {
     // Withdraw the reaction where it acted, and apply the new totals in the current geometry.
     apply_reaction(c, c.applied_normal, c.applied_xi, -c.normal, -c.tangent, dt_mid);
-    apply_reaction(c, g.normal, g.xi, total, tangent_total, dt_mid);
+    apply_reaction(c, g.normal, g.xi, normal_total, tangent_total, dt_mid);
     c.applied_normal = g.normal;
     c.applied_xi = g.xi;
   } else {
-    apply_reaction(c, g.normal, g.xi, change, tangent_total - c.tangent, dt_mid);
+    apply_reaction(c, g.normal, g.xi, normal_total - c.normal, tangent_total - c.tangent, dt_mid);
   }
-  c.normal = total;
+  c.normal = normal_total;
   c.tangent = tangent_total;
-  return g.valid ? gap_after - target : std::numeric_limits<double>::infinity();
 }
 
 bool ContactSolver::solve_pushing_together(double dt_mid, double dt_next) {
@@ -572,21 +575,10 @@ bool ContactSolver::solve_pushing_together(double dt_mid, double dt_next) {
   apply_w(change, q);
   for (std::size_t i = 0; i < n; ++i) r[i] = together_rhs_[i] - q[i];
   if (!(worst_of(r, totals) < 0.5 * worst_of(together_rhs_, current))) return false;
-  // The new totals, applied as a sweep applies them.
+  // The new totals, applied as a sweep applies them (frictionless: the tangential reaction stays 0).
   for (std::size_t i = 0; i < n; ++i) {
     Candidate& c = candidates_[static_cast<std::size_t>(set[i])];
-    const Geometry& g = geometry[i];
-    const double total = c.normal + change[i];
-    overlapping_ = g.start_gap < 0.0;
-    if (reoriented(c)) {
-      apply_reaction(c, c.applied_normal, c.applied_xi, -c.normal, -c.tangent, dt_mid);
-      apply_reaction(c, g.normal, g.xi, total, c.tangent, dt_mid);
-      c.applied_normal = g.normal;
-      c.applied_xi = g.xi;
-    } else {
-      apply_reaction(c, g.normal, g.xi, total - c.normal, 0.0, dt_mid);
-    }
-    c.normal = total;
+    replace_reaction(c, geometry[i], totals[i], c.tangent, dt_mid);
   }
   return true;
 }

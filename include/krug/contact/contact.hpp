@@ -202,6 +202,10 @@ class ContactSolver {
   // faces are redundant, and the sweeps crawl along its near-null directions, docs/verification.md C2).
   // The new totals (clamped at zero) are applied as a sweep applies them. Returns whether it ran.
   bool solve_pushing_together(double dt_mid, double dt_next);
+  // Sets candidate c's reactions to these totals, as every update does: a node-segment candidate's
+  // accumulated reaction is withdrawn where it acted and the totals applied along g's normal at g's xi;
+  // the other kinds add the change along g's normal. Books the overlap flag from g's start gap.
+  void replace_reaction(Candidate& c, const Geometry& g, double normal_total, double tangent_total, double dt_mid);
   std::vector<Index> together_;                          // its scratch: the contacts,
   std::vector<double> together_rhs_, together_x_, together_r_, together_p_, together_q_;  // the vectors,
   std::vector<Vec2> together_point_;                     // and a force per point (nodes, then particles)
