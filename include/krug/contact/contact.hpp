@@ -186,6 +186,10 @@ class ContactSolver {
     double applied_xi = 0.0;
   };
   static bool reoriented(const Candidate& c) { return c.kind == Kind::node_segment; }
+  // A node counts against a segment only while it projects onto it (with this slack at the ends,
+  // relative to the segment length) and started the step outside it or within this depth.
+  static constexpr double end_slack = 1e-3;
+  static constexpr double start_depth = 0.25;
 
   struct Geometry {
     Vec2 normal, tangent;
