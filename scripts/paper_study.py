@@ -103,6 +103,7 @@ def cases(groups, zones):
             ("linear_viscosity_1.0", ["--set", "controls.viscosity.linear=1.0"]),
             ("quadratic_viscosity_0.75", ["--set", "controls.viscosity.quadratic=0.75"]),
             ("quadratic_viscosity_1.5", ["--set", "controls.viscosity.quadratic=1.5"]),
+            ("solve_stalled", ["--set", "contact.solve_stalled=true"]),
         ]
         for kind in ("monolithic", "layered"):
             for name, options in knobs:

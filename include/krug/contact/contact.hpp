@@ -36,10 +36,9 @@ struct ContactControls {
   ReactionMethod method = ReactionMethod::gauss_seidel;
   int max_sweeps = 50;
   // After sweeps that reach max_sweeps unconverged, solve the pushing frictionless contacts together
-  // (ContactSolver::solve_pushing_together). Off by default: it changes the results of every run whose
-  // sweeps ever stall, and the paper's case is chaotic enough that such a change moves its figures
-  // within their numerical scatter (docs/verification.md, Contact, C2).
-  bool solve_stalled = false;
+  // (ContactSolver::solve_pushing_together): without it a pre-stressed stack of non-matching blocks
+  // crawls at the sweep limit (docs/verification.md, Contact, C2). False: the sweeps alone.
+  bool solve_stalled = true;
   double gap_tolerance = 1e-5;  // sweeps stop when no gap is below -tolerance x segment length
   double overlap_fraction = 0.1;  // a pre-existing overlap is removed by at most this fraction per step,
   double overlap_speed = 1.0;     // and no faster than this (m/s): a fraction per step alone is a speed
