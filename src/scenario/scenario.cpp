@@ -86,6 +86,10 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     c.hourglass.plastic_limit = h->number("plastic_limit", c.hourglass.plastic_limit, Range::between(0.0, 10.0));
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));
+    c.hourglass.subzonal_at_shocks = h->flag("subzonal_at_shocks", c.hourglass.subzonal_at_shocks);
+    if (c.hourglass.subzonal_at_shocks && c.viscosity.model != ViscosityModel::tensor) {
+      h->fail("subzonal_at_shocks", "false unless viscosity.model is \"tensor\" (whose switch marks the shocks)");
+    }
     h->finish();
   }
   {

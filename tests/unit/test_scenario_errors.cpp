@@ -90,6 +90,12 @@ TEST_CASE("scenario errors name the JSON path and what was expected", "[scenario
     CHECK(e.find("materials.gas.density") != std::string::npos);
     CHECK(e.find("> 0") != std::string::npos);
   }
+  SECTION("subzonal pressures at shocks only with the tensor viscosity, whose switch marks them") {
+    const auto e = error_of(replaced(base, "\"end_time\": 0.1,",
+                                     "\"end_time\": 0.1, \"controls\": {\"hourglass\": {\"subzonal_at_shocks\": true}},"));
+    CHECK(e.find("controls.hourglass.subzonal_at_shocks") != std::string::npos);
+    CHECK(e.find("tensor") != std::string::npos);
+  }
   SECTION("unknown model lists the valid ones") {
     const auto e = error_of(replaced(base, "\"ideal_gas\"", "\"ideal_gs\""));
     CHECK(e.find("materials.gas.eos.model") != std::string::npos);

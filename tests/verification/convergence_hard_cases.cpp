@@ -139,3 +139,28 @@ TEST_CASE("Hard cases, finer: Sedov spherical on RZ rectangles with the tensor v
     rz_rectangle::check_sedov(sedov, m, "Sedov, spherical (RZ rectangle " + mesh_name(m, m) + ", tensor q)", true);
   });
 }
+
+// The tensor viscosity with subzonal pressures at shocks only (hourglass.subzonal_pressure 2,
+// subzonal_at_shocks; test_tensor_viscosity.cpp) on the finer rectangles, otherwise default controls.
+// Measured: the Noh at 100 x 100 in 1 173 cycles (shock within 0.3 zones on every ray, plateau 61.47,
+// worst zone 5.7 %) and at 200 x 200 in 2 535 (within 0.4 zones, 62.78, 3.0 %); the Sedov in 1 070
+// and 2 755 cycles, within 0.5 zones on every ray.
+TEST_CASE("Hard cases, finer: Noh and Sedov spherical on RZ rectangles, tensor viscosity with subzonal pressures at shocks",
+          "[convergence][tensor][subzonal][noh][sedov]") {
+  const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
+  REQUIRE(scalar_q_cycles > 0);
+  const auto at_shocks = [](scenario::Scenario& scenario) {
+    scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+    scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
+    scenario.setup.controls.hourglass.subzonal_at_shocks = true;
+  };
+  for_each_finer_rectangle([&](int n) {
+    scenario::Scenario noh = rz_rectangle::load("noh_spherical_rectangle.json", n);
+    at_shocks(noh);
+    rz_rectangle::check_noh(noh, n, scalar_q_cycles * n / 50,
+                            "Noh, spherical (RZ rectangle " + mesh_name(n, n) + ", tensor q, subzonal 2 at shocks)");
+    scenario::Scenario sedov = rz_rectangle::load("sedov_spherical_rectangle.json", n);
+    at_shocks(sedov);
+    rz_rectangle::check_sedov(sedov, n, "Sedov, spherical (RZ rectangle " + mesh_name(n, n) + ", tensor q, subzonal 2 at shocks)", true);
+  });
+}

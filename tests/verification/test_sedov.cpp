@@ -87,6 +87,19 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, control-volume form", "[sedov
               {"Sedov, spherical (RZ polar, control volume)", Coordinate::radius, 1.0, spherical_energy});
 }
 
+// The same with the tensor viscosity and subzonal pressures at shocks (hourglass.subzonal_pressure 2,
+// subzonal_at_shocks; test_tensor_viscosity.cpp, docs/verification.md F7). Measured: shock 1.0016,
+// spread 0.18 zones, energy to 2e-16 (the edge viscosity's 1.0014).
+TEST_CASE("Sedov spherical on an RZ polar quarter, tensor viscosity with subzonal pressures at shocks",
+          "[sedov][axisymmetric][tensor][subzonal]") {
+  scenario::Scenario scenario = load_example("sedov_spherical.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
+  scenario.setup.controls.hourglass.subzonal_at_shocks = true;
+  check_sedov(run_to_end(scenario), {"Sedov, spherical (RZ polar, tensor q, subzonal 2 at shocks)", Coordinate::radius,
+                                     1.0, spherical_energy});
+}
+
 // Known failure F4 (docs/verification.md): symmetric, but gains 5.7 % energy and its shock is 3.5 zones out.
 TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov][axisymmetric][!mayfail]") {
   scenario::Scenario scenario = load_example("sedov_spherical.json");

@@ -77,7 +77,9 @@ template <GeometryKind G>
     if (!zones.active[z]) continue;
     const quad::Corners x = batch.corners(i);
     const double rho = zones.density[z];
-    const double stiffness = settings.subzonal * hydro.sound_speed[z] * hydro.sound_speed[z];
+    const double switch_on = settings.subzonal_at_shocks ? batch.shock[i] : 1.0;
+    if (!(switch_on > 0.0)) continue;
+    const double stiffness = switch_on * settings.subzonal * hydro.sound_speed[z] * hydro.sound_speed[z];
     const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
     const Vec2 middle = quad::centre(x);
     std::array<Vec2, 4> force{};
@@ -220,6 +222,7 @@ template <GeometryKind G>
   const bool area_weighted = axisymmetric && settings.area_weighted;
   const ZoneFields& zones = mesh.zones;
   double power = viscous_power;
+  for (int i = 0; i < count; ++i) batch.shock[i] = 0.0;
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
     if (!zones.active[z]) continue;
@@ -287,6 +290,7 @@ template <GeometryKind G>
       const double limiter = (psi[m] * gradient2[m] + psi[p] * gradient2[p]) / weights;
       const double active = 1.0 - limiter;
       if (!(active > 0.0)) continue;
+      batch.shock[i] = std::max(batch.shock[i], active);
       // A corner of a triangle stored as a quadrilateral has one edge of zero length: its other edge only.
       double cos_c = 0.0;
       double shortest = std::max(l1, l2);

@@ -32,6 +32,10 @@ struct HourglassParams {
   // the median mesh keeps its own mass, and one denser than its zone pushes with
   // dp = subzonal_pressure x c^2 (rho_corner - rho_zone). 0: off.
   double subzonal_pressure = 0.0;
+  // With the tensor viscosity: the subzonal pressures of a zone scaled by 1 - psi of its most active
+  // compressing corner (the tensor viscosity's own switch, batch_tensor_viscosity), so that they act at
+  // shocks and not in smooth flow. False: everywhere.
+  bool subzonal_at_shocks = false;
 };
 
 enum class AxisymmetricForm {

@@ -130,6 +130,7 @@ struct ZoneBatch : CornerBatch<zone_batch> {
   double bb[zone_batch];                                    // sum b_p . b_p
   double hourglass_power[zone_batch];
   double edge_compression[4][zone_batch];                   // du . dx of edge (p, p+1), < 0: compressing
+  double shock[zone_batch];  // tensor viscosity: 1 - psi of the zone's most active compressing corner, else 0
   // Area-weighted RZ form only: the zone's control-volume stress forces (its thermodynamic work) and
   // its area-weighted stress forces, whose difference corrects the work booked to the zone.
   double work_x[4][zone_batch], work_y[4][zone_batch];
@@ -160,6 +161,7 @@ struct ForceSettings {
   double cq_s = 0.0;               // c_q x the EOS shock slope
   double cl = 0.0;                 // c_l
   double subzonal = 0.0;           // subzonal pressure coefficient; 0: off
+  bool subzonal_at_shocks = false; // the subzonal pressures scaled by `shock` (after the tensor viscosity)
   bool consistent_deviator = false;  // RZ control volume with strength: the r-weighted operator B_p
 };
 

@@ -150,6 +150,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
   // Subzonal pressures: bodies without strength, compatible forms only.
   settings.consistent_deviator = G == GeometryKind::axisymmetric && !settings.area_weighted && params.shear_modulus != 0.0;
   settings.subzonal = params.shear_modulus == 0.0 && !settings.area_weighted ? params.hourglass.subzonal_pressure : 0.0;
+  settings.subzonal_at_shocks = params.hourglass.subzonal_at_shocks;
   const ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
@@ -168,7 +169,9 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     } else {
       detail::batch_stress_forces<G, false>(batch, count, first, strength);
     }
-    if (settings.subzonal > 0.0) detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
+    if (settings.subzonal > 0.0 && !settings.subzonal_at_shocks) {
+      detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
+    }
     if constexpr (Visc == ViscosityModel::edge) {
       detail::batch_edge_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings, area_weighted_arrays,
                                       shared_limiters, power.viscous);
@@ -176,6 +179,10 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     if constexpr (Visc == ViscosityModel::tensor) {
       detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
                                         area_weighted_arrays, power.viscous);
+      // At shocks only: after the tensor viscosity, which marks them (batch.shock).
+      if (settings.subzonal > 0.0 && settings.subzonal_at_shocks) {
+        detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
+      }
     }
     if (settings.hourglass_on) {
       detail::batch_hourglass_forces<G>(batch, count, first, zones, hydro, hourglass, fracture, params, settings);
