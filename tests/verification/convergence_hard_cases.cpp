@@ -149,18 +149,13 @@ TEST_CASE("Hard cases, finer: Noh and Sedov spherical on RZ rectangles, tensor v
           "[convergence][tensor][subzonal][noh][sedov]") {
   const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
   REQUIRE(scalar_q_cycles > 0);
-  const auto at_shocks = [](scenario::Scenario& scenario) {
-    scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
-    scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
-    scenario.setup.controls.hourglass.subzonal_at_shocks = true;
-  };
   for_each_finer_rectangle([&](int n) {
     scenario::Scenario noh = rz_rectangle::load("noh_spherical_rectangle.json", n);
-    at_shocks(noh);
+    rz_rectangle::use_tensor_with_subzonal_at_shocks(noh);
     rz_rectangle::check_noh(noh, n, scalar_q_cycles * n / 50,
                             "Noh, spherical (RZ rectangle " + mesh_name(n, n) + ", tensor q, subzonal 2 at shocks)");
     scenario::Scenario sedov = rz_rectangle::load("sedov_spherical_rectangle.json", n);
-    at_shocks(sedov);
+    rz_rectangle::use_tensor_with_subzonal_at_shocks(sedov);
     rz_rectangle::check_sedov(sedov, n, "Sedov, spherical (RZ rectangle " + mesh_name(n, n) + ", tensor q, subzonal 2 at shocks)", true);
   });
 }

@@ -30,6 +30,14 @@ inline scenario::Scenario load(const std::string& file, int n) {
   return scenario::parse_scenario(text, path.string());
 }
 
+// The controls of docs/verification.md F7's last measurement: the tensor viscosity with subzonal
+// pressures 2 acting at shocks only (hourglass.subzonal_at_shocks), otherwise the scenario's.
+inline void use_tensor_with_subzonal_at_shocks(scenario::Scenario& scenario) {
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
+  scenario.setup.controls.hourglass.subzonal_at_shocks = true;
+}
+
 // The cycles the Noh rectangle takes to its end time at n x n zones with Wilkins' scalar q (F7's
 // workaround, which completes it at 50 x 50): the budget check_noh allows 3 x of. 0 if that run stops.
 inline long noh_scalar_q_cycles(int n) {

@@ -93,9 +93,7 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, control-volume form", "[sedov
 TEST_CASE("Sedov spherical on an RZ polar quarter, tensor viscosity with subzonal pressures at shocks",
           "[sedov][axisymmetric][tensor][subzonal]") {
   scenario::Scenario scenario = load_example("sedov_spherical.json");
-  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
-  scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
-  scenario.setup.controls.hourglass.subzonal_at_shocks = true;
+  rz_rectangle::use_tensor_with_subzonal_at_shocks(scenario);
   check_sedov(run_to_end(scenario), {"Sedov, spherical (RZ polar, tensor q, subzonal 2 at shocks)", Coordinate::radius,
                                      1.0, spherical_energy});
 }

@@ -61,18 +61,10 @@ TEST_CASE("Tensor viscosity with rezoning: Noh spherical on a rectangular RZ mes
 // viscosity's: 1.01 zones, 60.68, 6.6 %), and the spherical Sedov on the polar mesh and the Noh and
 // Sedov on the 50 x 50 rectangle by theirs. The finer rectangles are in convergence_hard_cases.cpp;
 // docs/verification.md F7 has the variants measured on the way.
-namespace {
-void tensor_with_subzonal_at_shocks(scenario::Scenario& scenario) {
-  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
-  scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
-  scenario.setup.controls.hourglass.subzonal_at_shocks = true;
-}
-}  // namespace
-
 TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh spherical on an RZ equal-angle polar mesh",
           "[noh][axisymmetric][tensor][subzonal]") {
   scenario::Scenario scenario = load_example("noh_spherical.json");
-  tensor_with_subzonal_at_shocks(scenario);
+  rz_rectangle::use_tensor_with_subzonal_at_shocks(scenario);
   noh::check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, tensor q, subzonal 2 at shocks)", 3, Coordinate::radius});
 }
 
@@ -81,9 +73,9 @@ TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh and Sedov sph
   const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
   REQUIRE(scalar_q_cycles > 0);
   scenario::Scenario noh = load_example("noh_spherical_rectangle.json");
-  tensor_with_subzonal_at_shocks(noh);
+  rz_rectangle::use_tensor_with_subzonal_at_shocks(noh);
   rz_rectangle::check_noh(noh, 50, scalar_q_cycles, "Noh, spherical (RZ rectangle 50 x 50, tensor q, subzonal 2 at shocks)");
   scenario::Scenario sedov = load_example("sedov_spherical_rectangle.json");
-  tensor_with_subzonal_at_shocks(sedov);
+  rz_rectangle::use_tensor_with_subzonal_at_shocks(sedov);
   rz_rectangle::check_sedov(sedov, 50, "Sedov, spherical (RZ rectangle 50 x 50, tensor q, subzonal 2 at shocks)", true);
 }

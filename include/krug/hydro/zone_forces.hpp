@@ -150,7 +150,9 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
   // Subzonal pressures: bodies without strength, compatible forms only.
   settings.consistent_deviator = G == GeometryKind::axisymmetric && !settings.area_weighted && params.shear_modulus != 0.0;
   settings.subzonal = params.shear_modulus == 0.0 && !settings.area_weighted ? params.hourglass.subzonal_pressure : 0.0;
-  settings.subzonal_at_shocks = params.hourglass.subzonal_at_shocks;
+  // Only the tensor viscosity marks the shocks; with another model (which the scenario reader refuses)
+  // the subzonal pressures act everywhere rather than nowhere.
+  settings.subzonal_at_shocks = Visc == ViscosityModel::tensor && params.hourglass.subzonal_at_shocks;
   const ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
