@@ -104,6 +104,11 @@ def cases(groups, zones):
             ("quadratic_viscosity_0.75", ["--set", "controls.viscosity.quadratic=0.75"]),
             ("quadratic_viscosity_1.5", ["--set", "controls.viscosity.quadratic=1.5"]),
             ("solve_stalled", ["--set", "contact.solve_stalled=true"]),
+            ("physical", ["--set", "controls.hourglass.stiffness_form=\"physical\""]),
+            ("physical_viscous_0.02", ["--set", "controls.hourglass.stiffness_form=\"physical\"",
+                                       "--set", "controls.hourglass.viscous=0.02"]),
+            ("physical_viscous_0.15", ["--set", "controls.hourglass.stiffness_form=\"physical\"",
+                                       "--set", "controls.hourglass.viscous=0.15"]),
         ]
         for kind in ("monolithic", "layered"):
             for name, options in knobs:

@@ -15,6 +15,7 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
   params.shock_slope = material.shock_slope();
   params.shear_modulus = material.shear_modulus();
   params.flow_stress = material.initial_flow_stress();
+  params.bending_modulus = material.bending_modulus();
   params.viscosity = controls.viscosity;
   params.hourglass = controls.hourglass;
   params.axisymmetric_form = controls.axisymmetric_form;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "krug/hydro/zone_forces.hpp"
 #include "krug/hydro/zone_update.hpp"
@@ -361,6 +362,53 @@ TEST_CASE("hydro kernels: the hourglass stiffness state stops at the plastic bou
       CHECK(largest > 2.0 * flow_stress * b_norm);  // unbounded: far past the k_p = 1 bound
     }
   }
+}
+
+// The physical hourglass stiffness (artificial_forces.hpp, bending_stiffness) in units of E'/3: a
+// rectangle of half-sides a (along x) and b resists the mode's x part by b/a and its y part by a/b, the
+// stiffness of its pure bending; rotated, the same tensor rotated; numbered from another corner (its two
+// mid-lines exchanged), the same tensor.
+TEST_CASE("hydro kernels: the physical hourglass stiffness is the rectangle's bending", "[hydro][kernel][hourglass]") {
+  const double a = 2.0e-3, b = 0.5e-3;
+  auto corners = [&](double angle, int first) {
+    const std::array<Vec2, 4> local{Vec2{-a, -b}, Vec2{a, -b}, Vec2{a, b}, Vec2{-a, b}};
+    const double c = std::cos(angle), s = std::sin(angle);
+    quad::Corners x;
+    for (int p = 0; p < 4; ++p) {
+      const Vec2 l = local[static_cast<std::size_t>((p + first) % 4)];
+      x[static_cast<std::size_t>(p)] = Vec2{1.0e-3 + c * l.x - s * l.y, 2.0e-3 + s * l.x + c * l.y};
+    }
+    return x;
+  };
+  const detail::Bending aligned = detail::bending_stiffness(corners(0.0, 0), 4.0 * a * b);
+  CHECK(aligned.xx == Approx(b / a).epsilon(1e-13));
+  CHECK(aligned.yy == Approx(a / b).epsilon(1e-13));
+  CHECK(std::abs(aligned.xy) < 1e-13);
+  for (const double angle : {0.3, 1.1, 2.5}) {
+    for (const int first : {0, 1, 2, 3}) {
+      INFO("angle " << angle << ", numbered from corner " << first);
+      const quad::Corners x = corners(angle, first);
+      const detail::Bending k = detail::bending_stiffness(x, quad::area(x));
+      const double c = std::cos(angle), s = std::sin(angle);
+      CHECK(k.xx == Approx(c * c * b / a + s * s * a / b).epsilon(1e-12));
+      CHECK(k.yy == Approx(s * s * b / a + c * c * a / b).epsilon(1e-12));
+      CHECK(k.xy == Approx(c * s * (b / a - a / b)).epsilon(1e-12));
+    }
+  }
+  // In the kernel: one step of the x-mode rate q on the aligned rectangle adds (E'/3)(b/a) dt q to the state.
+  ZoneForceParams params = stress_only();
+  params.hourglass.stiffness_form = HourglassStiffness::physical;
+  params.shear_modulus = 26.0e9;
+  params.bending_modulus = 75.0e9;
+  params.flow_stress = std::numeric_limits<double>::infinity();
+  params.previous_time_step = 1.0e-9;
+  OneZone mesh = one_zone(corners(0.0, 0), GeometryKind::planar, 2700.0, 0.0);
+  const double speed = 3.0;
+  set_velocities(mesh, [&](Index p) { return Vec2{p % 2 == 0 ? speed : -speed, 0.0}; });
+  compute_forces<GeometryKind::planar>(mesh, params);
+  const double q = 2.0 * speed;  // sum_p gamma_p u_p, gamma = h / 2 on a rectangle
+  CHECK(mesh.state.hourglass.hourglass_x[0] == Approx(75.0e9 / 3.0 * (b / a) * 1.0e-9 * q).epsilon(1e-12));
+  CHECK(mesh.state.hourglass.hourglass_y[0] == 0.0);
 }
 
 // The tensor viscosity (Campbell & Shashkov 2001) alone on the distorted zone, compressed and sheared

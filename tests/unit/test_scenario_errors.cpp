@@ -96,6 +96,13 @@ TEST_CASE("scenario errors name the JSON path and what was expected", "[scenario
     CHECK(e.find("controls.hourglass.subzonal_at_shocks") != std::string::npos);
     CHECK(e.find("tensor") != std::string::npos);
   }
+  SECTION("no stiffness coefficient with the physical hourglass stiffness, which has none") {
+    const auto e = error_of(replaced(base, "\"end_time\": 0.1,",
+                                     "\"end_time\": 0.1, \"controls\": {\"hourglass\": {\"stiffness_form\": \"physical\", "
+                                     "\"stiffness\": 0.1}},"));
+    CHECK(e.find("controls.hourglass.stiffness") != std::string::npos);
+    CHECK(e.find("physical") != std::string::npos);
+  }
   SECTION("unknown model lists the valid ones") {
     const auto e = error_of(replaced(base, "\"ideal_gas\"", "\"ideal_gs\""));
     CHECK(e.find("materials.gas.eos.model") != std::string::npos);

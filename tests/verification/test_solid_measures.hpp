@@ -157,8 +157,9 @@ struct PlateVibration {
   }
 };
 
-// beryllium_plate.json at nx x ny zones with the initial velocity scaled by `amplitude`.
-inline PlateVibration run_plate(int nx, int ny, double amplitude, double end_time = 9.0e-5) {
+// beryllium_plate.json at nx x ny zones with the initial velocity scaled by `amplitude`; `physical`:
+// the physical hourglass stiffness in place of the scenario's coefficient 0.05.
+inline PlateVibration run_plate(int nx, int ny, double amplitude, double end_time = 9.0e-5, bool physical = false) {
   char factor[64];
   std::snprintf(factor, sizeof factor, "\"%.17g * 4.3369e-5", amplitude);
   const scenario::Scenario scenario = load_example(
@@ -168,7 +169,8 @@ inline PlateVibration run_plate(int nx, int ny, double amplitude, double end_tim
        {"\"y\": { \"from\": -0.005, \"to\": 0.005, \"zones\": 10 }",
         "\"y\": { \"from\": -0.005, \"to\": 0.005, \"zones\": " + std::to_string(ny) + " }"},
        {"\"1.0 * 4.3369e-5", factor},
-       {"\"end_time\": 9.0e-5", "\"end_time\": " + std::to_string(end_time)}});
+       {"\"end_time\": 9.0e-5", "\"end_time\": " + std::to_string(end_time)},
+       {"\"stiffness\": 0.05", physical ? "\"stiffness_form\": \"physical\"" : "\"stiffness\": 0.05"}});
   Run run(scenario.setup);
   const NodeFields& nodes = run.simulation.mesh().nodes;
   const std::vector<double> shape(nodes.v.begin(), nodes.v.end()), start(nodes.y.begin(), nodes.y.end());

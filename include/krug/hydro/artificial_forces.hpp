@@ -343,6 +343,43 @@ template <GeometryKind G>
   viscous_power = power;
 }
 
+// The physical hourglass stiffness of a zone, in units of E'/3 (symmetric, global components): the
+// stiffness against the hourglass rate q = sum_p gamma_p u_p of a rectangle with half-sides a (along
+// its unit axis t) and b, deformed in pure bending. With u = q_t (xi eta) t / 2 the fibres along t bend
+// (strain q_t eta / 2a, the shear taken up by the incompatible modes xi^2 and eta^2), storing
+// E' q_t^2 b / 6a: stiffness (E'/3)(b/a) along t, and by the same count (E'/3)(a/b) across it. For a
+// quadrilateral, t and a from each of its two mid-line half-vectors e (xi: the mean of the edges 0-1 and
+// 3-2, halved; eta: of 0-3 and 1-2), b = A / 4a, and the two results averaged, so that the form does
+// not depend on which mid-line is named first and is exact for a rectangle:
+//   K_e = (A / 4|e|^4) e e^T + (4|e|^2 / A)(I - e e^T / |e|^2).
+// A mid-line of (near) zero length (a triangle's collapsed edge pair) is skipped for the other.
+struct Bending {
+  double xx = 0.0, xy = 0.0, yy = 0.0;
+};
+inline Bending bending_stiffness(const quad::Corners& x, double area) {
+  if (!(area > 0.0)) return {};
+  const Vec2 xi = 0.25 * ((x[1] - x[0]) + (x[2] - x[3]));
+  const Vec2 eta = 0.25 * ((x[3] - x[0]) + (x[2] - x[1]));
+  Bending k;
+  int axes = 0;
+  for (const Vec2& e : {xi, eta}) {
+    const double e2 = dot(e, e);
+    if (!(e2 > 1e-6 * area)) continue;
+    const double along = area / (4.0 * e2 * e2);  // (b/a) / a^2
+    const double across = 4.0 * e2 / area;         // a/b
+    k.xx += along * e.x * e.x + across * (1.0 - e.x * e.x / e2);
+    k.xy += along * e.x * e.y - across * e.x * e.y / e2;
+    k.yy += along * e.y * e.y + across * (1.0 - e.y * e.y / e2);
+    ++axes;
+  }
+  if (axes == 2) {
+    k.xx *= 0.5;
+    k.xy *= 0.5;
+    k.yy *= 0.5;
+  }
+  return k;
+}
+
 // Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
 // rates, the stiffness state (hourglass.hourglass_x/y, intact zones only), and the batch's hourglass power.
 template <GeometryKind G>
@@ -372,8 +409,15 @@ template <GeometryKind G>
       const Index z = first + i;
       if (!zones.active[z] || fracture.damaged[z]) continue;  // damaged: no shear stiffness
       const double area = batch.area[i];
-      increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
-      increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
+      if (settings.physical_stiffness) {
+        const Bending k = bending_stiffness(batch.corners(i), area);
+        const double factor = settings.stiffness_modulus * params.previous_time_step;
+        increment_x[i] = factor * (k.xx * batch.rate_x[i] + k.xy * batch.rate_y[i]);
+        increment_y[i] = factor * (k.xy * batch.rate_x[i] + k.yy * batch.rate_y[i]);
+      } else {
+        increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+        increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
+      }
       double qx = hourglass.hourglass_x[z] + increment_x[i];
       double qy = hourglass.hourglass_y[z] + increment_y[i];
       if (settings.hourglass_bound > 0.0) {

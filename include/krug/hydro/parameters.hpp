@@ -21,9 +21,21 @@ struct ViscosityParams {
                                  // without strength; 0: off
 };
 
+// How the stiffness part of the hourglass control is sized, in bodies with strength.
+enum class HourglassStiffness {
+  // Flanagan & Belytschko (1981): k mu |b|^2 / A for both directions of the mode, k = `stiffness`.
+  coefficient,
+  // The zone's own bending stiffness (the physical stabilization of Belytschko & Bindeman 1991, in the
+  // incompatible-mode form): the mode's displacement along each of the zone's axes resisted as the pure
+  // bending of a rectangle of those sides, E'/3 x (the zone's extent across / along that axis), E' the
+  // plane-strain modulus from the reference bulk and shear moduli. No coefficient: `stiffness` unused.
+  physical
+};
+
 struct HourglassParams {
   double viscous = 0.05;    // Flanagan-Belytschko viscous coefficient (x rho c sqrt(A))
   double stiffness = 0.05;  // Flanagan-Belytschko stiffness coefficient (x shear modulus; no effect without strength)
+  HourglassStiffness stiffness_form = HourglassStiffness::coefficient;
   // The stiffness state's bound in bodies that yield: |Q| <= plastic_limit x Y0 x |b| (Y0 the initial
   // flow stress, |b| the zone's area-gradient norm), the most a zone at yield can resist its
   // hourglass mode with. 0: unbounded.

@@ -18,6 +18,7 @@ struct ZoneForceParams {
   double shock_slope = 0.5;            // of the body's EOS
   double shear_modulus = 0.0;          // Pa, for stiffness hourglass
   double flow_stress = 0.0;            // Pa, initial flow stress, for the stiffness state's plastic bound
+  double bending_modulus = 0.0;        // Pa, plane-strain E' = 4 mu (3K + mu) / (3K + 4 mu), physical hourglass stiffness
   ViscosityParams viscosity;
   HourglassParams hourglass;
   AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
@@ -156,7 +157,8 @@ struct ForceSettings {
   bool area_weighted = false;
   bool hourglass_on = false;
   bool hourglass_stiff = false;
-  double stiffness_modulus = 0.0;  // k_s mu
+  double stiffness_modulus = 0.0;  // k_s mu (coefficient form), E'/3 (physical form)
+  bool physical_stiffness = false; // the stiffness from the zone's bending (HourglassStiffness::physical)
   double hourglass_bound = 0.0;    // k_p Y0: the bound of |Q| / |b| (Pa); 0: none
   double cq_s = 0.0;               // c_q x the EOS shock slope
   double cl = 0.0;                 // c_l

@@ -140,9 +140,12 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
                                       SharedEdgeLimiters shared_limiters = {}) {
   detail::ForceSettings settings;
   settings.area_weighted = G == GeometryKind::axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
-  settings.hourglass_on = params.hourglass.viscous > 0.0 || params.hourglass.stiffness > 0.0;
-  // k_s mu: without shear stiffness (a gas, or k_s = 0) the stiffness state never changes.
-  settings.stiffness_modulus = params.hourglass.stiffness * params.shear_modulus;
+  // k_s mu, or E'/3 in the physical form: without shear stiffness (a gas, or k_s = 0 in the coefficient
+  // form) the stiffness state never changes.
+  settings.physical_stiffness = params.hourglass.stiffness_form == HourglassStiffness::physical;
+  settings.stiffness_modulus = settings.physical_stiffness ? params.bending_modulus / 3.0
+                                                           : params.hourglass.stiffness * params.shear_modulus;
+  settings.hourglass_on = params.hourglass.viscous > 0.0 || settings.stiffness_modulus > 0.0;
   settings.hourglass_stiff = settings.stiffness_modulus != 0.0;
   if (std::isfinite(params.flow_stress)) settings.hourglass_bound = params.hourglass.plastic_limit * params.flow_stress;
   settings.cq_s = params.viscosity.quadratic * params.shock_slope;

@@ -27,6 +27,15 @@ struct Material {
   double initial_flow_stress() const {
     return std::visit([](const auto& s) { return s.flow_stress(0.0); }, strength);
   }
+  // The plane-strain modulus E' = E / (1 - nu^2) = 4 mu (3K + mu) / (3K + 4 mu) from the reference bulk
+  // modulus K and the shear modulus mu (Pa): the stiffness of a zone in pure bending (the physical
+  // hourglass stiffness). 0 without strength.
+  double bending_modulus() const {
+    const double mu = shear_modulus();
+    if (!(mu > 0.0)) return 0.0;
+    const double k = reference_bulk_modulus(eos);
+    return 4.0 * mu * (3.0 * k + mu) / (3.0 * k + 4.0 * mu);
+  }
   double shock_slope() const {
     return std::visit([](const auto& m) { return m.shock_slope(); }, eos);
   }
