@@ -409,6 +409,31 @@ TEST_CASE("hydro kernels: the physical hourglass stiffness is the rectangle's be
   const double q = 2.0 * speed;  // sum_p gamma_p u_p, gamma = h / 2 on a rectangle
   CHECK(mesh.state.hourglass.hourglass_x[0] == Approx(75.0e9 / 3.0 * (b / a) * 1.0e-9 * q).epsilon(1e-12));
   CHECK(mesh.state.hourglass.hourglass_y[0] == 0.0);
+  // Driven on, the state stops at k_p times the rectangle's fully plastic bending, Y' b along x and Y' a
+  // along y (Y' = 2 Y0 / sqrt(3)), and stays there.
+  params.flow_stress = 2.8e8;
+  params.previous_time_step = 1.0e-8;  // the x-mode bound in about 430 steps, the y-mode one in about 110
+  const double plastic = 2.0 / std::sqrt(3.0) * 2.8e8;
+  for (const bool along_x : {true, false}) {
+    for (const double limit : {1.0, 0.5}) {
+      INFO((along_x ? "x" : "y") << " mode, plastic_limit " << limit);
+      params.hourglass.plastic_limit = limit;
+      OneZone driven = one_zone(corners(0.0, 0), GeometryKind::planar, 2700.0, 0.0);
+      set_velocities(driven, [&](Index p) {
+        const double v = p % 2 == 0 ? speed : -speed;
+        return along_x ? Vec2{v, 0.0} : Vec2{0.0, v};
+      });
+      double largest = 0.0;
+      for (int step = 0; step < 2000; ++step) {
+        compute_forces<GeometryKind::planar>(driven, params);
+        largest = std::max(largest, std::hypot(driven.state.hourglass.hourglass_x[0], driven.state.hourglass.hourglass_y[0]));
+      }
+      const double bound = limit * plastic * (along_x ? b : a);
+      CHECK(largest == Approx(bound).epsilon(1e-12));
+      CHECK(std::hypot(driven.state.hourglass.hourglass_x[0], driven.state.hourglass.hourglass_y[0]) ==
+            Approx(bound).epsilon(1e-12));
+    }
+  }
 }
 
 // The tensor viscosity (Campbell & Shashkov 2001) alone on the distorted zone, compressed and sheared

@@ -32,6 +32,28 @@ double lowest_node(const Mesh& mesh, const Body& body) {
 
 }  // namespace
 
+TEST_CASE("E6 Taylor bar with the physical hourglass stiffness", "[E6][strength][axisymmetric][physical]") {
+  scenario::Scenario scenario = load_example("taylor_bar.json");
+  scenario.setup.controls.hourglass.stiffness_form = HourglassStiffness::physical;
+  Run run(scenario.setup);
+  const TaylorMeasures m = advance_taylor(run);
+  const Simulation& sim = run.simulation;
+  const Body& bar = sim.bodies().front();
+  const long zones = bar.zone_end - bar.zone_begin;
+  INFO("length " << 1e3 * m.length << " mm, impact-face radius " << 1e3 * m.face_radius << " mm; hourglass "
+                 << sim.ledger().energy.hourglass << " J, plastic " << sim.ledger().energy.plastic << " J; " << sim.cycle()
+                 << " cycles");
+  CHECK(m.length > 21.2e-3);
+  CHECK(m.length < 21.7e-3);
+  CHECK(m.face_radius > 6.95e-3);
+  CHECK(m.face_radius < 7.45e-3);
+  CHECK(sim.ledger().relative_energy_drift() < 1e-12);
+  report("E6 Taylor bar, physical hourglass", "length at 80 us (mm)", "21.42-21.43", 1e3 * m.length,
+         format_number("%+.2f mm", 1e3 * m.length - 21.43), zones, run.seconds);
+  report("E6 Taylor bar, physical hourglass", "impact-face radius at 80 us (mm)", "7.22-7.23", 1e3 * m.face_radius,
+         format_number("%+.2f mm", 1e3 * m.face_radius - 7.23), zones, run.seconds);
+}
+
 TEST_CASE("E6 Taylor bar at 227 m/s: length and impact-face radius at 80 us", "[E6][strength][axisymmetric]") {
   const scenario::Scenario scenario = load_example("taylor_bar.json");
   Run run(scenario.setup);

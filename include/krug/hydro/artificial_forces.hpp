@@ -353,32 +353,49 @@ template <GeometryKind G>
 // not depend on which mid-line is named first and is exact for a rectangle:
 //   K_e = (A / 4|e|^4) e e^T + (4|e|^2 / A)(I - e e^T / |e|^2).
 // A mid-line of (near) zero length (a triangle's collapsed edge pair) is skipped for the other.
+//
+// The same rectangle fully plastic in bending (the bending stress +-Y' on either side of its mid-line,
+// Y' = 2 Y0 / sqrt(3) in plane strain) resists the mode along t with Y' b and across it with Y' a (the
+// generalised force of that stress on q); the physical form bounds the state by that, through the metric
+// M with Q^T M Q = (Q_t / b)^2 + (Q_n / a)^2 on a rectangle, from the mid-lines likewise:
+//   M_e = (16 / A^2) e e^T + (I - e e^T / |e|^2) / |e|^2.
 struct Bending {
   double xx = 0.0, xy = 0.0, yy = 0.0;
 };
-inline Bending bending_stiffness(const quad::Corners& x, double area) {
+struct ZoneBending {
+  Bending stiffness;  // K / (E'/3)
+  Bending metric;     // M: Q^T M Q / Y'^2 <= 1 within the fully plastic bound
+};
+inline ZoneBending zone_bending(const quad::Corners& x, double area) {
   if (!(area > 0.0)) return {};
   const Vec2 xi = 0.25 * ((x[1] - x[0]) + (x[2] - x[3]));
   const Vec2 eta = 0.25 * ((x[3] - x[0]) + (x[2] - x[1]));
-  Bending k;
+  ZoneBending z;
   int axes = 0;
   for (const Vec2& e : {xi, eta}) {
     const double e2 = dot(e, e);
     if (!(e2 > 1e-6 * area)) continue;
     const double along = area / (4.0 * e2 * e2);  // (b/a) / a^2
     const double across = 4.0 * e2 / area;         // a/b
-    k.xx += along * e.x * e.x + across * (1.0 - e.x * e.x / e2);
-    k.xy += along * e.x * e.y - across * e.x * e.y / e2;
-    k.yy += along * e.y * e.y + across * (1.0 - e.y * e.y / e2);
+    z.stiffness.xx += along * e.x * e.x + across * (1.0 - e.x * e.x / e2);
+    z.stiffness.xy += along * e.x * e.y - across * e.x * e.y / e2;
+    z.stiffness.yy += along * e.y * e.y + across * (1.0 - e.y * e.y / e2);
+    const double plastic_along = 16.0 / (area * area), plastic_across = 1.0 / e2;
+    z.metric.xx += plastic_along * e.x * e.x + plastic_across * (1.0 - e.x * e.x / e2);
+    z.metric.xy += plastic_along * e.x * e.y - plastic_across * e.x * e.y / e2;
+    z.metric.yy += plastic_along * e.y * e.y + plastic_across * (1.0 - e.y * e.y / e2);
     ++axes;
   }
   if (axes == 2) {
-    k.xx *= 0.5;
-    k.xy *= 0.5;
-    k.yy *= 0.5;
+    for (Bending* b : {&z.stiffness, &z.metric}) {
+      b->xx *= 0.5;
+      b->xy *= 0.5;
+      b->yy *= 0.5;
+    }
   }
-  return k;
+  return z;
 }
+inline Bending bending_stiffness(const quad::Corners& x, double area) { return zone_bending(x, area).stiffness; }
 
 // Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
 // rates, the stiffness state (hourglass.hourglass_x/y, intact zones only), and the batch's hourglass power.
@@ -410,10 +427,29 @@ template <GeometryKind G>
       if (!zones.active[z] || fracture.damaged[z]) continue;  // damaged: no shear stiffness
       const double area = batch.area[i];
       if (settings.physical_stiffness) {
-        const Bending k = bending_stiffness(batch.corners(i), area);
+        const ZoneBending z_bending = zone_bending(batch.corners(i), area);
+        const Bending& k = z_bending.stiffness;
         const double factor = settings.stiffness_modulus * params.previous_time_step;
         increment_x[i] = factor * (k.xx * batch.rate_x[i] + k.xy * batch.rate_y[i]);
         increment_y[i] = factor * (k.xy * batch.rate_x[i] + k.yy * batch.rate_y[i]);
+        double qx = hourglass.hourglass_x[z] + increment_x[i];
+        double qy = hourglass.hourglass_y[z] + increment_y[i];
+        if (settings.hourglass_bound > 0.0) {
+          // k_p times the zone's fully plastic bending, Y' = 2 Y0 / sqrt(3).
+          const Bending& m = z_bending.metric;
+          const double bound = settings.hourglass_bound * (2.0 / std::sqrt(3.0));
+          const double size2 = qx * (m.xx * qx + m.xy * qy) + qy * (m.xy * qx + m.yy * qy);
+          if (size2 > bound * bound) {
+            const double shrink = bound / std::sqrt(size2);
+            qx *= shrink;
+            qy *= shrink;
+            increment_x[i] = qx - hourglass.hourglass_x[z];
+            increment_y[i] = qy - hourglass.hourglass_y[z];
+          }
+        }
+        hourglass.hourglass_x[z] = qx;
+        hourglass.hourglass_y[z] = qy;
+        continue;
       } else {
         increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
         increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
