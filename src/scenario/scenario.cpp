@@ -82,14 +82,18 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     JsonObject hourglass = spec->object_or_empty("hourglass");
     JsonObject* h = &hourglass;
     c.hourglass.viscous = h->number("viscous", c.hourglass.viscous, Range::between(0.0, 1.0));
-    const std::string form = h->choice("stiffness_form", {"coefficient", "physical"},
-                                       c.hourglass.stiffness_form == HourglassStiffness::physical ? "physical" : "coefficient");
+    // A scenario that gives a stiffness coefficient asks for the form that has one, unless it names a form.
+    const bool physical_by_default = c.hourglass.stiffness_form == HourglassStiffness::physical && !h->has("stiffness");
+    const std::string form =
+        h->choice("stiffness_form", {"coefficient", "physical"}, physical_by_default ? "physical" : "coefficient");
     c.hourglass.stiffness_form = form == "physical" ? HourglassStiffness::physical : HourglassStiffness::coefficient;
     if (c.hourglass.stiffness_form == HourglassStiffness::physical && h->has("stiffness")) {
       h->fail("stiffness", "no stiffness coefficient with stiffness_form \"physical\" (the zone's own bending stiffness); "
                            "set stiffness_form \"coefficient\" to size it by a coefficient");
     }
-    c.hourglass.stiffness = h->number("stiffness", c.hourglass.stiffness, Range::between(0.0, 1.0));
+    if (c.hourglass.stiffness_form == HourglassStiffness::coefficient) {
+      c.hourglass.stiffness = h->number("stiffness", c.hourglass.stiffness, Range::between(0.0, 1.0));
+    }
     c.hourglass.plastic_limit = h->number("plastic_limit", c.hourglass.plastic_limit, Range::between(0.0, 10.0));
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));

@@ -71,6 +71,19 @@ TEST_CASE("a valid scenario parses and resolves its defaults", "[scenario]") {
   // The resolved document is itself a valid scenario giving the same mesh.
   const auto again = parse_scenario(scenario.resolved_json, "resolved.json");
   CHECK(again.setup.mesh.zones.size() == 16);
+  // The physical hourglass stiffness has no coefficient: its resolved document leaves `stiffness` out, so
+  // that it reads back (a restart reads it); a scenario that gives `stiffness` alone keeps the coefficient form.
+  const auto physical = parse_scenario(
+      replaced(valid_scenario(), "\"bodies\"", "\"controls\": { \"hourglass\": { \"stiffness_form\": \"physical\" } }, \"bodies\""),
+      "p.json");
+  CHECK(physical.setup.controls.hourglass.stiffness_form == krug::HourglassStiffness::physical);
+  CHECK(physical.resolved_json.find("\"stiffness\":") == std::string::npos);
+  const auto physical_again = parse_scenario(physical.resolved_json, "resolved.json");
+  CHECK(physical_again.setup.controls.hourglass.stiffness_form == krug::HourglassStiffness::physical);
+  const auto coefficient = parse_scenario(
+      replaced(valid_scenario(), "\"bodies\"", "\"controls\": { \"hourglass\": { \"stiffness\": 0.1 } }, \"bodies\""), "c.json");
+  CHECK(coefficient.setup.controls.hourglass.stiffness_form == krug::HourglassStiffness::coefficient);
+  CHECK(coefficient.setup.controls.hourglass.stiffness == 0.1);
 }
 
 TEST_CASE("scenario errors name the JSON path and what was expected", "[scenario]") {
