@@ -422,7 +422,8 @@ def scatter(run_dirs, csv_path):
     """The spread of the headline figures over runs that differ by a perturbation that should not
     matter (`generate --velocity` 355 x (1 + k 1e-9), k = 0..N): runs are grouped by their name without
     the trailing `_d<k>`, and each group gets the mean, sample standard deviation, smallest and largest
-    of each figure. Writes one row per group."""
+    of each figure (bullet_hourglass: the projectile's hourglass work over the energy put into its zones).
+    Writes one row per group."""
     groups = {}
     for run in run_dirs:
         name = os.path.basename(os.path.normpath(run))
@@ -434,8 +435,9 @@ def scatter(run_dirs, csv_path):
         groups.setdefault(group, []).append({
             "piece": p["piece_velocity_loss"], "whole": w["velocity_loss"],
             "eroded": p["eroded_mass"] / p["initial_mass"], "backward": w["backward_mass"] / p["initial_mass"],
-            "cycles": float(summary["cycles"])})
-    figures = ["piece", "whole", "eroded", "backward", "cycles"]
+            "cycles": float(summary["cycles"]),
+            "bullet_hourglass": hourglass_share(summary.get("bodies", {}).get(p["projectile"], {}))})
+    figures = ["piece", "whole", "eroded", "backward", "cycles", "bullet_hourglass"]
     fields = ["run", "runs"] + [f"{f}_{s}" for f in figures for s in ("mean", "std", "min", "max")]
     with open(csv_path, "w") as out:
         out.write(",".join(fields) + "\n")
