@@ -20,7 +20,7 @@ Fig. 6 group. Groups:
   velocity     the three 3 mm targets at 350, 370 and 390 m/s, 2.6 g
   knobs        2.6 g, monolithic and layered 3 mm: the reference and one numerical control changed at a
                time (lead erosion 0.05 / 0.2; hourglass 0.02 / 0.15, both parts and each alone; c_l 0.15 / 0.25 / 1;
-               c_q 0.5 / 0.75 / 1.5; gap tolerance)
+               c_q 0.5 / 0.75 / 1.5; gap tolerance; the physical hourglass stiffness, with viscous 0.05 / 0.02 / 0.15)
   johnson_cook 2.6 g, monolithic 3 mm, end time doubled: the paper's elongation criterion, Johnson-Cook
                damage (6061-T6 D1..D5) on the paper's plate, and the library's whole 6061-T6 set
   sensitivity  the monolithic 3 mm target, 2.6 g, one parameter changed at a time; the spaced target

@@ -450,10 +450,9 @@ template <GeometryKind G>
         hourglass.hourglass_x[z] = qx;
         hourglass.hourglass_y[z] = qy;
         continue;
-      } else {
-        increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
-        increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
       }
+      increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+      increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
       double qx = hourglass.hourglass_x[z] + increment_x[i];
       double qy = hourglass.hourglass_y[z] + increment_y[i];
       if (settings.hourglass_bound > 0.0) {

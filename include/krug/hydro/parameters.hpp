@@ -38,7 +38,8 @@ struct HourglassParams {
   HourglassStiffness stiffness_form = HourglassStiffness::coefficient;
   // The stiffness state's bound in bodies that yield: |Q| <= plastic_limit x Y0 x |b| (Y0 the initial
   // flow stress, |b| the zone's area-gradient norm), the most a zone at yield can resist its
-  // hourglass mode with. 0: unbounded.
+  // hourglass mode with; in the physical form plastic_limit x the zone's fully plastic bending
+  // (artificial_forces.hpp, zone_bending). 0: unbounded.
   double plastic_limit = 1.0;
   // Subzonal pressures (Caramana & Shashkov 1998), in bodies without strength: each corner region of
   // the median mesh keeps its own mass, and one denser than its zone pushes with
