@@ -364,7 +364,7 @@ TEST_CASE("hydro kernels: the hourglass stiffness state stops at the plastic bou
   }
 }
 
-// The physical hourglass stiffness (artificial_forces.hpp, bending_stiffness) in units of E'/3: a
+// The physical hourglass stiffness (artificial_forces.hpp, zone_bending) in units of E'/3: a
 // rectangle of half-sides a (along x) and b resists the mode's x part by b/a and its y part by a/b, the
 // stiffness of its pure bending; rotated, the same tensor rotated; numbered from another corner (its two
 // mid-lines exchanged), the same tensor.
@@ -380,7 +380,7 @@ TEST_CASE("hydro kernels: the physical hourglass stiffness is the rectangle's be
     }
     return x;
   };
-  const detail::Bending aligned = detail::bending_stiffness(corners(0.0, 0), 4.0 * a * b);
+  const detail::Bending aligned = detail::zone_bending(corners(0.0, 0), 4.0 * a * b).stiffness;
   CHECK(aligned.xx == Approx(b / a).epsilon(1e-13));
   CHECK(aligned.yy == Approx(a / b).epsilon(1e-13));
   CHECK(std::abs(aligned.xy) < 1e-13);
@@ -388,7 +388,7 @@ TEST_CASE("hydro kernels: the physical hourglass stiffness is the rectangle's be
     for (const int first : {0, 1, 2, 3}) {
       INFO("angle " << angle << ", numbered from corner " << first);
       const quad::Corners x = corners(angle, first);
-      const detail::Bending k = detail::bending_stiffness(x, quad::area(x));
+      const detail::Bending k = detail::zone_bending(x, quad::area(x)).stiffness;
       const double c = std::cos(angle), s = std::sin(angle);
       CHECK(k.xx == Approx(c * c * b / a + s * s * a / b).epsilon(1e-12));
       CHECK(k.yy == Approx(s * s * b / a + c * c * a / b).epsilon(1e-12));

@@ -96,7 +96,7 @@ TEST_CASE("E5 beryllium plate over six periods: the stiffness hourglass stores, 
 
 TEST_CASE("E5 beryllium plate with the physical hourglass stiffness", "[E5][strength][hourglass][physical]") {
   // The physical form resists each zone's hourglass mode as the pure bending of the zone (artificial_forces.hpp,
-  // bending_stiffness): in a bent beam of ny zones through its depth, the bending strain's variation within
+  // zone_bending): in a bent beam of ny zones through its depth, the bending strain's variation within
   // each zone (its hourglass mode) carries 1/ny^2 of the strain energy, the rest the zones' mean strains
   // (the variance of a linear field within ny equal slices over its whole variance). So the hourglass line
   // should store about 1/ny^2 of the peak internal energy, and the period should be nearer the converged one

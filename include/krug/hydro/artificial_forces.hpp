@@ -395,7 +395,6 @@ inline ZoneBending zone_bending(const quad::Corners& x, double area) {
   }
   return z;
 }
-inline Bending bending_stiffness(const quad::Corners& x, double area) { return zone_bending(x, area).stiffness; }
 
 // Hourglass forces (Flanagan & Belytschko 1981) added to the batch's forces: the shape vectors and
 // rates, the stiffness state (hourglass.hourglass_x/y, intact zones only), and the batch's hourglass power.
@@ -426,38 +425,31 @@ template <GeometryKind G>
       const Index z = first + i;
       if (!zones.active[z] || fracture.damaged[z]) continue;  // damaged: no shear stiffness
       const double area = batch.area[i];
+      ZoneBending bending;  // the physical form's stiffness and plastic metric
       if (settings.physical_stiffness) {
-        const ZoneBending z_bending = zone_bending(batch.corners(i), area);
-        const Bending& k = z_bending.stiffness;
+        bending = zone_bending(batch.corners(i), area);
+        const Bending& k = bending.stiffness;
         const double factor = settings.stiffness_modulus * params.previous_time_step;
         increment_x[i] = factor * (k.xx * batch.rate_x[i] + k.xy * batch.rate_y[i]);
         increment_y[i] = factor * (k.xy * batch.rate_x[i] + k.yy * batch.rate_y[i]);
-        double qx = hourglass.hourglass_x[z] + increment_x[i];
-        double qy = hourglass.hourglass_y[z] + increment_y[i];
-        if (settings.hourglass_bound > 0.0) {
-          // k_p times the zone's fully plastic bending, Y' = 2 Y0 / sqrt(3).
-          const Bending& m = z_bending.metric;
-          const double bound = settings.hourglass_bound * (2.0 / std::sqrt(3.0));
-          const double size2 = qx * (m.xx * qx + m.xy * qy) + qy * (m.xy * qx + m.yy * qy);
-          if (size2 > bound * bound) {
-            const double shrink = bound / std::sqrt(size2);
-            qx *= shrink;
-            qy *= shrink;
-            increment_x[i] = qx - hourglass.hourglass_x[z];
-            increment_y[i] = qy - hourglass.hourglass_y[z];
-          }
-        }
-        hourglass.hourglass_x[z] = qx;
-        hourglass.hourglass_y[z] = qy;
-        continue;
+      } else {
+        increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
+        increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
       }
-      increment_x[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_x[i];
-      increment_y[i] = settings.stiffness_modulus * params.previous_time_step * batch.bb[i] / area * batch.rate_y[i];
       double qx = hourglass.hourglass_x[z] + increment_x[i];
       double qy = hourglass.hourglass_y[z] + increment_y[i];
       if (settings.hourglass_bound > 0.0) {
-        const double bound = settings.hourglass_bound * std::sqrt(batch.bb[i]);
-        const double size = std::sqrt(qx * qx + qy * qy);
+        // |Q| <= k_p Y0 |b|; in the physical form sqrt(Q^T M Q) <= k_p Y', k_p times the zone's fully
+        // plastic bending (Y' = 2 Y0 / sqrt(3)).
+        double size = 0.0, bound = 0.0;
+        if (settings.physical_stiffness) {
+          const Bending& m = bending.metric;
+          bound = settings.hourglass_bound * (2.0 / std::sqrt(3.0));
+          size = std::sqrt(qx * (m.xx * qx + m.xy * qy) + qy * (m.xy * qx + m.yy * qy));
+        } else {
+          bound = settings.hourglass_bound * std::sqrt(batch.bb[i]);
+          size = std::sqrt(qx * qx + qy * qy);
+        }
         if (size > bound) {
           qx *= bound / size;
           qy *= bound / size;
