@@ -11,6 +11,18 @@ namespace krug::contact {
 
 // --- candidates ---------------------------------------------------------------------------------
 
+namespace {
+
+// One point's candidates in the order of the broad phase's items (segment or particle index), not in
+// the order a grid query meets them: that order depends on the grid's cells, which follow the boxes
+// of the step, and the reactions are solved in candidate order.
+template <class FoundList>
+void by_item(FoundList& found) {
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.item < b.item; });
+}
+
+}  // namespace
+
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
                                                 Index pair, int threads) {
@@ -51,8 +63,9 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
         candidate.pair = pair;
         candidate.start_gap = std::min(start.gap, 0.0);
         candidate.length = length;
-        found.push_back({candidate, start.gap, over});
+        found.push_back({candidate, start.gap, over, k});
       });
+      by_item(found);
       double shallowest = -std::numeric_limits<double>::infinity();
       for (const Found& f : found) {
         if (f.over) shallowest = std::max(shallowest, f.gap);
@@ -146,10 +159,11 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   // Particles against the segments of every body (the grids are build_grids').
   const std::vector<const BoundarySegment*>& segments = particle_segments_;
   in_chunks(static_cast<std::size_t>(count), threads,
-            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
     for (std::size_t n = first; n < last; ++n) {
       const ContactPoint point = ContactPoint::particle(static_cast<Index>(n));
       const double r = radius(point);
+      found.clear();
       segment_grid_.query(reach_box(point), [&](std::size_t k) {
         const BoundarySegment& s = *segments[k];
         const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
@@ -163,15 +177,18 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
         candidate.start_gap_a = std::min(norm(position(point) - position(s.a)) - r, 0.0);
         candidate.start_gap_b = std::min(norm(position(point) - position(s.b)) - r, 0.0);
         candidate.length = std::max(length, r);
-        out.push_back(candidate);
+        found.push_back({candidate, 0.0, true, k});
       });
+      by_item(found);
+      for (const Found& f : found) out.push_back(f.candidate);
     }
   });
   // Particles against each other.
   in_chunks(static_cast<std::size_t>(count), threads,
-            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
     for (std::size_t n = first; n < last; ++n) {
       const Index i = static_cast<Index>(n);
+      found.clear();
       particle_grid_.query(particle_boxes_[n], [&](std::size_t j) {
         if (static_cast<Index>(j) <= i) return;
         const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
@@ -180,8 +197,10 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
         candidate.kind = Kind::particle_particle;
         candidate.start_gap = std::min(start_gap, 0.0);
         candidate.length = std::max(radius(a), radius(b));
-        out.push_back(candidate);
+        found.push_back({candidate, 0.0, true, j});
       });
+      by_item(found);
+      for (const Found& f : found) out.push_back(f.candidate);
     }
   });
   // Particles against the walls and the axis.

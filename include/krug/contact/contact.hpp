@@ -296,6 +296,7 @@ class ContactSolver {
     Candidate candidate;
     double gap;  // signed distance from the face's line at x^n
     bool over;   // projects onto the segment at x^n (within end_slack)
+    std::size_t item;  // the broad phase's item (segment or particle index): one point's candidates go in its order
   };
   template <class Search>
   void in_chunks(std::size_t count, int threads, Search&& search);
