@@ -11,22 +11,17 @@ namespace krug::contact {
 
 // --- candidates ---------------------------------------------------------------------------------
 
-namespace {
-
-// One point's candidates in the order of the broad phase's items (segment or particle index), not in
-// the order a grid query meets them: that order depends on the grid's cells, which follow the boxes
-// of the step, and the reactions are solved in candidate order.
-template <class FoundList>
-void by_item(FoundList& found) {
-  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.item < b.item; });
-}
-
-}  // namespace
 
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
-                                                Index pair, int threads) {
-  const UniformGrid& grid = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())].grid;
+                                                Index pair, std::size_t search, int threads) {
+  const MasterGrid& master = master_grids_[static_cast<std::size_t>(&masters - boundaries_.data())];
+  const std::vector<Box>& boxes = master.boxes;
+  NearLists& lists = node_segment_lists_[search];
+  if (rebuilding_) lists.chunks.resize((slaves.nodes.size() + search_chunk - 1) / search_chunk);
+  // A master box moves with its segment's ends (allowed_motion_ at most) and grows with its length
+  // (start_depth x at most 2 sqrt(2) allowed_motion_); the node's box moves with it.
+  const double margin = 1.01 * allowed_motion_ * (2.0 + 2.0 * std::sqrt(2.0) * start_depth);
   // Each slave node's candidates are gathered, then kept only where the node can touch the face: a
   // node beside a segment's end and behind its line (past a convex corner of the master) is never in
   // contact with that face, and a node behind a face's line is handled by the master's shallowest face
@@ -35,27 +30,41 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
   // overlap and was pushed sideways.
   // In fixed chunks of slave nodes (on the threads), each chunk's candidates kept in node order and the
   // chunks joined in order: the same list on any number of threads.
-  const auto search = [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
+  const auto search_chunk_nodes = [&](std::size_t first, std::size_t last, std::vector<Candidate>& out,
+                                      std::vector<Found>& found) {
+    NearList& list = lists.chunks[first / search_chunk];
+    if (rebuilding_) {
+      list.start.assign(1, 0);
+      list.items.clear();
+    }
     for (std::size_t n = first; n < last; ++n) {
       const Index c = slaves.nodes[n];
-      found.clear();
       Box swept;
       swept.include(position(c));
       swept.include(predicted(c, dt_next));
-      grid.query(swept, [&](std::size_t k) {
+      if (rebuilding_) {
+        const std::size_t begin = list.items.size();
+        master.grid.query(swept.expanded(margin), [&](std::size_t k) { list.items.push_back(static_cast<std::uint32_t>(k)); });
+        std::sort(list.items.begin() + static_cast<std::ptrdiff_t>(begin), list.items.end());
+        list.start.push_back(static_cast<std::uint32_t>(list.items.size()));
+      }
+      found.clear();
+      for (std::uint32_t i = list.start[n - first]; i < list.start[n - first + 1]; ++i) {
+        const std::size_t k = list.items[i];
+        if (!boxes[k].overlaps(swept)) continue;
         const BoundarySegment& s = masters.segments[k];
-        if (s.a == c || s.b == c) return;
+        if (s.a == c || s.b == c) continue;
         const Vec2 a = position(s.a), b = position(s.b);
         const SegmentProjection start = project(position(c), a, b, 0.0);
         const double length = norm(b - a);
-        if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
-        if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
+        if (start.gap < -start_depth * length) continue;  // behind the surface: the far side of a body
+        if (self && start.gap < 0.0) continue;             // a body's own surface is never entered from behind
         const double along = dot(position(c) - a, b - a) / std::max(length * length, 1e-300);
         const bool over = along >= -end_slack && along <= 1.0 + end_slack;
         // Beside the end and further behind the line than past the end: past a convex corner, on the
         // far side of the corner's bisector (a right angle's; a node grazing the line keeps its contact).
         const double beside = length * std::max(-along, along - 1.0);
-        if (!over && start.gap < 0.0 && -start.gap > beside) return;
+        if (!over && start.gap < 0.0 && -start.gap > beside) continue;
         Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
         candidate.kind = Kind::node_segment;
         candidate.friction = friction;
@@ -63,9 +72,8 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
         candidate.pair = pair;
         candidate.start_gap = std::min(start.gap, 0.0);
         candidate.length = length;
-        found.push_back({candidate, start.gap, over, k});
-      });
-      by_item(found);
+        found.push_back({candidate, start.gap, over});
+      }
       double shallowest = -std::numeric_limits<double>::infinity();
       for (const Found& f : found) {
         if (f.over) shallowest = std::max(shallowest, f.gap);
@@ -78,14 +86,14 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
       }
     }
   };
-  in_chunks(slaves.nodes.size(), threads, search);
+  in_chunks(slaves.nodes.size(), threads, search_chunk_nodes);
 }
 
 // Calls search(first, last, candidates, found) on fixed chunks of [0, count) (their size from count alone),
 // on up to `threads` threads, and appends each chunk's candidates to candidates_ in chunk order.
 template <class Search>
 void ContactSolver::in_chunks(std::size_t count, int threads, Search&& search) {
-  constexpr std::size_t chunk = 64;
+  constexpr std::size_t chunk = search_chunk;
   const std::size_t chunks = (count + chunk - 1) / chunk;
   if (chunk_candidates_.size() < chunks) chunk_candidates_.resize(chunks);
   if (chunk_found_.size() < chunks) chunk_found_.resize(chunks);
@@ -123,7 +131,7 @@ void ContactSolver::build_grids(double dt_next, int threads) {
       for (const BoundarySegment& s : boundaries_[k].segments) {
         master.boxes.push_back(swept_box(s, dt_next).expanded(start_depth * norm(position(s.b) - position(s.a))));
       }
-      master.grid.build(master.boxes);
+      if (rebuilding_) master.grid.build(master.boxes);
     } else if (k == masters) {
       segment_boxes_.clear();
       particle_segments_.clear();
@@ -133,11 +141,11 @@ void ContactSolver::build_grids(double dt_next, int threads) {
           particle_segments_.push_back(&s);
         }
       }
-      segment_grid_.build(segment_boxes_);
+      if (rebuilding_) segment_grid_.build(segment_boxes_);
     } else {
       particle_boxes_.clear();
       for (Index i = 0; i < particles_.size; ++i) particle_boxes_.push_back(reach_box(ContactPoint::particle(i), dt_next));
-      particle_grid_.build(particle_boxes_);
+      if (rebuilding_) particle_grid_.build(particle_boxes_);
     }
   };
   // The particles' segment grid first: it holds every body's segments, the largest build.
@@ -156,15 +164,44 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   const Index count = particles_.size;
   if (count == 0) return;
   const auto reach_box = [&](ContactPoint point) { return this->reach_box(point, dt_next); };
-  // Particles against the segments of every body (the grids are build_grids').
+  // Particles against the segments of every body, then against each other (the grids are build_grids',
+  // the lists the near lists above). Each box moves by allowed_motion_ at most, so a list holds the items
+  // within twice that of the point's box at the rebuild.
+  const double margin = 1.01 * 2.0 * allowed_motion_;
+  const std::size_t chunks = (static_cast<std::size_t>(count) + search_chunk - 1) / search_chunk;
+  if (rebuilding_) {
+    particle_segment_lists_.chunks.resize(chunks);
+    particle_particle_lists_.chunks.resize(chunks);
+  }
+  // Calls visit(item) for the items of particle n's list (rebuilt from `grid` first if due) whose
+  // current boxes overlap `box`, in item order.
+  const auto listed = [&](NearList& list, std::size_t n, std::size_t first, const UniformGrid& grid,
+                          const std::vector<Box>& boxes, const Box& box, auto&& visit) {
+    if (rebuilding_) {
+      const std::size_t begin = list.items.size();
+      grid.query(box.expanded(margin), [&](std::size_t k) { list.items.push_back(static_cast<std::uint32_t>(k)); });
+      std::sort(list.items.begin() + static_cast<std::ptrdiff_t>(begin), list.items.end());
+      list.start.push_back(static_cast<std::uint32_t>(list.items.size()));
+    }
+    for (std::uint32_t i = list.start[n - first]; i < list.start[n - first + 1]; ++i) {
+      const std::size_t k = list.items[i];
+      if (boxes[k].overlaps(box)) visit(k);
+    }
+  };
+  const auto start_list = [&](NearList& list) {
+    if (!rebuilding_) return;
+    list.start.assign(1, 0);
+    list.items.clear();
+  };
   const std::vector<const BoundarySegment*>& segments = particle_segments_;
   in_chunks(static_cast<std::size_t>(count), threads,
-            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+    NearList& list = particle_segment_lists_.chunks[first / search_chunk];
+    start_list(list);
     for (std::size_t n = first; n < last; ++n) {
       const ContactPoint point = ContactPoint::particle(static_cast<Index>(n));
       const double r = radius(point);
-      found.clear();
-      segment_grid_.query(reach_box(point), [&](std::size_t k) {
+      listed(list, n, first, segment_grid_, segment_boxes_, reach_box(point), [&](std::size_t k) {
         const BoundarySegment& s = *segments[k];
         const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
         const double length = norm(position(s.b) - position(s.a));
@@ -177,19 +214,18 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
         candidate.start_gap_a = std::min(norm(position(point) - position(s.a)) - r, 0.0);
         candidate.start_gap_b = std::min(norm(position(point) - position(s.b)) - r, 0.0);
         candidate.length = std::max(length, r);
-        found.push_back({candidate, 0.0, true, k});
+        out.push_back(candidate);
       });
-      by_item(found);
-      for (const Found& f : found) out.push_back(f.candidate);
     }
   });
   // Particles against each other.
   in_chunks(static_cast<std::size_t>(count), threads,
-            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>& found) {
+            [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
+    NearList& list = particle_particle_lists_.chunks[first / search_chunk];
+    start_list(list);
     for (std::size_t n = first; n < last; ++n) {
       const Index i = static_cast<Index>(n);
-      found.clear();
-      particle_grid_.query(particle_boxes_[n], [&](std::size_t j) {
+      listed(list, n, first, particle_grid_, particle_boxes_, particle_boxes_[n], [&](std::size_t j) {
         if (static_cast<Index>(j) <= i) return;
         const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
         const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);
@@ -197,10 +233,8 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
         candidate.kind = Kind::particle_particle;
         candidate.start_gap = std::min(start_gap, 0.0);
         candidate.length = std::max(radius(a), radius(b));
-        found.push_back({candidate, 0.0, true, j});
+        out.push_back(candidate);
       });
-      by_item(found);
-      for (const Found& f : found) out.push_back(f.candidate);
     }
   });
   // Particles against the walls and the axis.
@@ -230,20 +264,74 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   }
 }
 
+bool ContactSolver::within_allowed_motion(double dt_next) const {
+  const auto within = [&](Vec2 now, Vec2 then) {
+    return std::abs(now.x - then.x) <= allowed_motion_ && std::abs(now.y - then.y) <= allowed_motion_;
+  };
+  for (const BodyBoundary& boundary : boundaries_) {
+    for (Index c : boundary.nodes) {
+      const std::size_t i = static_cast<std::size_t>(c);
+      if (!within(position(c), listed_position_[i]) || !within(predicted(c, dt_next), listed_predicted_[i])) return false;
+    }
+  }
+  if (!setup_.particles) return true;
+  for (Index p = 0; p < particles_.size; ++p) {
+    const ContactPoint point = ContactPoint::particle(p);
+    const std::size_t i = static_cast<std::size_t>(p);
+    if (!within(position(point), listed_particle_position_[i]) ||
+        !within(predicted(point, dt_next), listed_particle_predicted_[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void ContactSolver::record_listed_positions(double dt_next) {
+  listed_position_.resize(reaction_x_.size());
+  listed_predicted_.resize(reaction_x_.size());
+  double length_sum = 0.0;
+  std::size_t segments = 0;
+  for (const BodyBoundary& boundary : boundaries_) {
+    for (Index c : boundary.nodes) {
+      listed_position_[static_cast<std::size_t>(c)] = position(c);
+      listed_predicted_[static_cast<std::size_t>(c)] = predicted(c, dt_next);
+    }
+    for (const BoundarySegment& s : boundary.segments) length_sum += norm(position(s.b) - position(s.a));
+    segments += boundary.segments.size();
+  }
+  listed_particles_ = setup_.particles ? particles_.size : 0;
+  listed_particle_position_.resize(static_cast<std::size_t>(listed_particles_));
+  listed_particle_predicted_.resize(static_cast<std::size_t>(listed_particles_));
+  for (Index p = 0; p < listed_particles_; ++p) {
+    listed_particle_position_[static_cast<std::size_t>(p)] = position(ContactPoint::particle(p));
+    listed_particle_predicted_[static_cast<std::size_t>(p)] = predicted(ContactPoint::particle(p), dt_next);
+  }
+  allowed_motion_ = allowed_motion_fraction * length_sum / static_cast<double>(std::max<std::size_t>(segments, 1));
+}
+
 void ContactSolver::find_candidates(double dt_next, int threads) {
   candidates_.clear();
+  const Index particles = setup_.particles ? particles_.size : 0;
+  rebuilding_ = !lists_valid_ || particles != listed_particles_ || !within_allowed_motion(dt_next);
+  if (rebuilding_) {
+    record_listed_positions(dt_next);
+    lists_valid_ = true;
+  }
   build_grids(dt_next, threads);
   const bool summation = setup_.controls.method == ReactionMethod::summation;
+  std::size_t search = 0;
   for (std::size_t k = 0; k < setup_.pairs.size(); ++k) {
     const BodyPair& pair = setup_.pairs[k];
     const Index index = static_cast<Index>(k);
     const BodyBoundary& first = boundaries_[static_cast<std::size_t>(pair.first)];
     const BodyBoundary& second = boundaries_[static_cast<std::size_t>(pair.second)];
+    node_segment_lists_.resize(std::max(node_segment_lists_.size(), search + 2));
+    const double weight = summation ? 0.5 : 1.0;
     if (pair.first == pair.second) {
-      add_node_segment_candidates(first, first, pair.friction, summation ? 0.5 : 1.0, true, dt_next, index, threads);
+      add_node_segment_candidates(first, first, pair.friction, weight, true, dt_next, index, search++, threads);
     } else {
-      add_node_segment_candidates(first, second, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index, threads);
-      add_node_segment_candidates(second, first, pair.friction, summation ? 0.5 : 1.0, false, dt_next, index, threads);
+      add_node_segment_candidates(first, second, pair.friction, weight, false, dt_next, index, search++, threads);
+      add_node_segment_candidates(second, first, pair.friction, weight, false, dt_next, index, search++, threads);
     }
   }
   for (std::size_t w = 0; w < setup_.walls.size(); ++w) {

@@ -31,6 +31,7 @@ ContactSolver::ContactSolver(ContactSetup setup, const Mesh& mesh,
 }
 
 void ContactSolver::rebuild_boundaries(const Mesh& mesh) {
+  lists_valid_ = false;  // the near lists index the old boundaries' segments and nodes
   boundaries_.assign(zone_ranges_.size(), BodyBoundary{});
   for (std::size_t b = 0; b < zone_ranges_.size(); ++b) {
     BodyBoundary& boundary = boundaries_[b];
@@ -229,6 +230,7 @@ ContactStatistics ContactSolver::solve(NodesView nodes, ParticlesView particles,
   ContactStatistics stats;
   find_candidates(dt_next, threads);
   stats.candidates = static_cast<long>(candidates_.size());
+  stats.lists_rebuilt = rebuilding_;
   if (candidates_.empty()) return stats;
 
   if (setup_.controls.method == ReactionMethod::summation) {

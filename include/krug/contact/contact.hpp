@@ -62,6 +62,7 @@ struct ContactStatistics {
   int together = 0;              // times the stalled sweeps' pushing contacts were solved together (solve_stalled)
   double deepest_gap = 0.0;      // most negative predicted gap left after the sweeps (m)
   double total_normal = 0.0;     // sum of normal reactions (N per radian or per m)
+  bool lists_rebuilt = false;    // the broad phase's grids and near lists were rebuilt for this solve
 };
 
 // Per-body boundary description, rebuilt when the topology changes.
@@ -214,8 +215,10 @@ class ContactSolver {
   std::vector<Vec2> together_point_;                     // and a force per point (nodes, then particles)
   // The candidate search runs on up to `threads` threads (in_chunks) with the same list on any number.
   void find_candidates(double dt_next, int threads);
+  // `search`: which node-segment search of find_candidates this is (the index of its near lists).
   void add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters, double friction,
-                                   double weight, bool self, double dt_next, Index pair, int threads);
+                                   double weight, bool self, double dt_next, Index pair, std::size_t search,
+                                   int threads);
   void add_particle_candidates(double dt_next, int threads);
   Geometry contact_geometry(const Candidate& c, double dt_next) const;
   // Coulomb: the tangential reaction that stops the slip at xi, from `accumulated`, within f x
@@ -296,10 +299,40 @@ class ContactSolver {
     Candidate candidate;
     double gap;  // signed distance from the face's line at x^n
     bool over;   // projects onto the segment at x^n (within end_slack)
-    std::size_t item;  // the broad phase's item (segment or particle index): one point's candidates go in its order
   };
+  // Calls search(first, last, candidates, found) on fixed chunks of search_chunk points.
+  static constexpr std::size_t search_chunk = 64;
   template <class Search>
   void in_chunks(std::size_t count, int threads, Search&& search);
+
+  // The broad phase reused across steps (near lists, as Verlet lists in molecular dynamics). At a
+  // rebuild each query point keeps, sorted, the items whose boxes overlap its own box grown by the
+  // margin that covers what the points may move before the next rebuild; each step its candidates are
+  // the items of its list whose current boxes overlap its current box: the same items, in the same
+  // order (by item), as a query of a grid built that step. The lists are rebuilt when a boundary node
+  // or particle (its position or its predicted position) has moved further than allowed_motion_ since
+  // the last rebuild, when the boundaries were rebuilt and when the particles changed in number.
+  struct NearList {
+    std::vector<std::uint32_t> start;  // point first + i of the chunk has items[start[i] .. start[i + 1])
+    std::vector<std::uint32_t> items;
+  };
+  struct NearLists {
+    std::vector<NearList> chunks;  // one per in_chunks chunk of the search's points
+  };
+  std::vector<NearLists> node_segment_lists_;   // one per node-segment search, in find_candidates' order
+  NearLists particle_segment_lists_, particle_particle_lists_;
+  // The motion a list allows, as a fraction of the boundaries' mean segment length at the rebuild.
+  static constexpr double allowed_motion_fraction = 0.2;
+  bool lists_valid_ = false;
+  bool rebuilding_ = false;        // this step's search rebuilds the grids and the lists
+  double allowed_motion_ = 0.0;    // m, per coordinate
+  std::vector<Vec2> listed_position_, listed_predicted_;                    // mesh nodes, at the rebuild
+  std::vector<Vec2> listed_particle_position_, listed_particle_predicted_;   // particles, at the rebuild
+  Index listed_particles_ = 0;
+  // Whether every boundary node and particle is within allowed_motion_ (in x and in y) of where it
+  // and its predicted position were at the last rebuild.
+  bool within_allowed_motion(double dt_next) const;
+  void record_listed_positions(double dt_next);
   std::vector<std::vector<Candidate>> chunk_candidates_;   // in_chunks: each chunk's candidates (scratch)
   std::vector<std::vector<Found>> chunk_found_;            // and one slave node's candidates in the chunk
   std::vector<const BoundarySegment*> particle_segments_;  // the segments of the particles' broad phase
