@@ -6,7 +6,11 @@
 //                               pressed together along an interface of N + 5N/8 nodes (non-matching
 //                               meshes, both ways), ns per active contact and per candidate: the cost
 //                               of a solve with 1 + k sweeps minus that with 1 sweep, over k;
-//   reaction_solve/N            the whole solve with the default controls (candidates, sweeps, stats);
+//   reaction_solve/N            the whole solve with the default controls (candidates, sweeps, stats),
+//                               the solver kept between solves: nothing moves, so its near lists are
+//                               reused and no grid is built (a step between rebuilds);
+//   reaction_solve_rebuilt/N    the same with a solver built (untimed) before each solve, so every solve
+//                               builds the grids and the near lists (a rebuild step);
 //   broad_phase/build/N         UniformGrid::build over N boxes, ns per box;
 //   broad_phase/query/N         one query per box (the box itself, as a body's nodes are queried
 //                               against its segments), ns per query;
@@ -136,8 +140,10 @@ struct SolveTiming {
   long active = 0, candidates = 0, sweeps = 0, solves = 0;
 };
 
-// Solves repeatedly from the same predicted state (velocities restored, not timed).
-SolveTiming time_solves(const PressedBlocks& blocks, contact::ContactControls controls, benchmark::State* state) {
+// Solves repeatedly from the same predicted state (velocities restored, not timed); `fresh`: with a
+// solver built before each solve (not timed), whose broad phase is then built in the solve.
+SolveTiming time_solves(const PressedBlocks& blocks, contact::ContactControls controls, benchmark::State* state,
+                        bool fresh = false) {
   contact::ContactSetup setup = blocks.setup;
   setup.controls = controls;
   Mesh mesh = blocks.mesh;
@@ -147,6 +153,7 @@ SolveTiming time_solves(const PressedBlocks& blocks, contact::ContactControls co
   const auto one = [&] {
     mesh.nodes.u = blocks.mesh.nodes.u;
     mesh.nodes.v = blocks.mesh.nodes.v;
+    if (fresh) solver = contact::ContactSolver(setup, mesh, blocks.ranges);
     contact::ContactStatistics stats;
     const Timing t = time_it([&] { stats = solver.solve(contact::nodes_view(mesh.nodes), contact::particles_view(particles), blocks.dt, blocks.dt); });
     benchmark::DoNotOptimize(mesh.nodes.u.data());
@@ -186,9 +193,9 @@ void reaction_sweep(benchmark::State& state) {
   state.counters["candidates"] = candidates;
 }
 
-void reaction_solve(benchmark::State& state) {
+void reaction_solve(benchmark::State& state, bool fresh) {
   const PressedBlocks blocks = pressed_blocks(static_cast<int>(state.range(0)));
-  const SolveTiming t = time_solves(blocks, contact::ContactControls{}, &state);
+  const SolveTiming t = time_solves(blocks, contact::ContactControls{}, &state, fresh);
   const double solves = static_cast<double>(t.solves);
   state.counters["ns_per_active_contact"] = t.total.cpu_ns / static_cast<double>(t.active);
   state.counters["sweeps"] = static_cast<double>(t.sweeps) / solves;
@@ -255,7 +262,12 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark("reaction_sweep", reaction_sweep)->Arg(across)->UseManualTime()->Unit(benchmark::kMicrosecond);
   }
   for (int across : {64, 512, 4096}) {
-    benchmark::RegisterBenchmark("reaction_solve", reaction_solve)->Arg(across)->UseManualTime()->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("reaction_solve", [](benchmark::State& s) { reaction_solve(s, false); })
+        ->Arg(across)->UseManualTime()->Unit(benchmark::kMicrosecond);
+  }
+  for (int across : {64, 512, 4096}) {
+    benchmark::RegisterBenchmark("reaction_solve_rebuilt", [](benchmark::State& s) { reaction_solve(s, true); })
+        ->Arg(across)->UseManualTime()->Unit(benchmark::kMicrosecond);
   }
   for (bool ordered : {false, true}) {
     const std::string order = ordered ? "ordered" : "random";
