@@ -7,7 +7,9 @@
 //
 // stretches/exact, stretches/bound: the principal stretches of a quad from its initial shape
 // (krug::fracture::zone_stretches) against the root-free test that they are below a limit
-// (krug::fracture::stretches_below), on a mesh of 64 x 64 RZ zones sheared by up to 5 %.
+// (krug::fracture::stretches_below), on a mesh of 64 x 64 RZ zones sheared by up to 5 %;
+// stretches/bound_cached: the same test with the zones' initial shapes computed once
+// (krug::fracture::initial_shapes, as the Simulation keeps them).
 //
 // zone_update/copper_rz/200x200: step 5 of the time step alone (krug::update_zones, the batched zone
 // update: geometry, compatible energy, deviator, EOS, stable step) on the 40 000 zones of the copper
@@ -98,15 +100,20 @@ krug::Mesh sheared_mesh() {
   return mesh;
 }
 
-template <bool bound>
+enum class StretchTest { exact, bound, bound_cached };
+
+template <StretchTest test>
 void stretches(benchmark::State& state) {
   const krug::Mesh mesh = sheared_mesh();
   const krug::Index zones = mesh.zones.size();
+  const std::vector<krug::fracture::InitialShape> shapes = krug::fracture::initial_shapes(mesh);
   for (auto _ : state) {
     double sum = 0.0;
     for (krug::Index z = 0; z < zones; ++z) {
-      if constexpr (bound) {
+      if constexpr (test == StretchTest::bound) {
         sum += krug::fracture::stretches_below(mesh, z, true, 1.4) ? 1.0 : 0.0;
+      } else if constexpr (test == StretchTest::bound_cached) {
+        sum += krug::fracture::stretches_below(mesh, z, true, 1.4, shapes[static_cast<std::size_t>(z)]) ? 1.0 : 0.0;
       } else {
         sum += krug::fracture::zone_stretches(mesh, z, true).largest();
       }
@@ -157,7 +164,8 @@ void zone_update(benchmark::State& state) {
 
 BENCHMARK(rotation<true>)->Name("rotation/polynomial");
 BENCHMARK(rotation<false>)->Name("rotation/library");
-BENCHMARK(stretches<false>)->Name("stretches/exact");
-BENCHMARK(stretches<true>)->Name("stretches/bound");
+BENCHMARK(stretches<StretchTest::exact>)->Name("stretches/exact");
+BENCHMARK(stretches<StretchTest::bound>)->Name("stretches/bound");
+BENCHMARK(stretches<StretchTest::bound_cached>)->Name("stretches/bound_cached");
 BENCHMARK(zone_update)->Name("zone_update/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -17,6 +17,12 @@ Stretches zone_stretches(const Mesh& mesh, Index z, bool axisymmetric) {
   return principal_stretches(f11, f12, f21, f22, hoop);
 }
 
+std::vector<InitialShape> initial_shapes(const Mesh& mesh) {
+  std::vector<InitialShape> shapes(static_cast<std::size_t>(mesh.zones.size()));
+  for (Index z = 0; z < mesh.zones.size(); ++z) shapes[static_cast<std::size_t>(z)] = initial_shape(mesh, z);
+  return shapes;
+}
+
 void damage_zone(ZoneState& state, Index z, Criterion why, double now) {
   state.fracture.damaged[z] = 1;
   state.fracture.damage_time[z] = now;

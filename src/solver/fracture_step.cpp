@@ -56,8 +56,9 @@ bool face_is_free(const ZoneFields& zones, Index zone, int edge, const std::vect
 void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
                            const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
                            GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts,
-                           int threads) {
+                           int threads, const std::vector<fracture::InitialShape>& shapes) {
   const std::vector<double>& energy = mesh.zones.specific_energy;
+  const fracture::InitialShape* shape = shapes.size() == static_cast<std::size_t>(mesh.zones.size()) ? shapes.data() : nullptr;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!fracture::enabled(laws[b])) continue;
     const Body& body = bodies[b];
@@ -69,9 +70,10 @@ void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector
             using S = std::decay_t<decltype(strength)>;
             if constexpr (std::is_same_v<S, JohnsonCook>) {
               return fracture::damage_zones(mesh, state, first, last, law, geometry, now, dt,
-                                            [&](Index z) { return strength.temperature_from_energy(energy[z]); });
+                                            [&](Index z) { return strength.temperature_from_energy(energy[z]); }, shape);
             } else {
-              return fracture::damage_zones(mesh, state, first, last, law, geometry, now, dt);
+              return fracture::damage_zones(mesh, state, first, last, law, geometry, now, dt, fracture::NoTemperature{},
+                                            shape);
             }
           },
           laws[b], material.strength);

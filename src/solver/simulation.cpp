@@ -55,7 +55,10 @@ void Simulation::initialise() {
   derive_masses(state_.mesh, bodies_, materials_, geometry_);
   nodes.x0 = nodes.x;
   nodes.y0 = nodes.y;
-  if (fracture_enabled_) state_.zones_per_node = count_zones_per_node(state_.mesh);
+  if (fracture_enabled_) {
+    state_.zones_per_node = count_zones_per_node(state_.mesh);
+    initial_shapes_ = fracture::initial_shapes(state_.mesh);
+  }
   boundary_.initialise(nodes, geometry_);  // zero inverse masses where a condition holds (the axis in RZ among them)
 
   initialise_zone_state(state_.zone_state, zones, bodies_, materials_);
@@ -138,6 +141,7 @@ void Simulation::restore(SimulationState s) {
   }
   state_ = std::move(s);
   topology_changed_ = true;  // contact boundaries are rebuilt from the restored connectivity
+  if (fracture_enabled_) initial_shapes_ = fracture::initial_shapes(state_.mesh);  // from the restored x0
   share_edge_limiters();
 }
 
@@ -350,7 +354,8 @@ void Simulation::fail(const std::string& what, Index zone) const {
 void Simulation::evaluate_fracture() {
   // The state just computed is at t^{n+1}; the plastic strain grew over dt^{n+1/2}.
   evaluate_failure_laws(state_.mesh, state_.zone_state, bodies_, materials_, failure_laws_, geometry_,
-                        state_.time + state_.time_step_next, state_.time_step_next, state_.fracture_counts, controls_.threads);
+                        state_.time + state_.time_step_next, state_.time_step_next, state_.fracture_counts, controls_.threads,
+                        initial_shapes_);
 }
 
 void Simulation::convert_fractured_zones() {

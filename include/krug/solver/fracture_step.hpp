@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "krug/core/geometry_kind.hpp"
+#include "krug/fracture/damage.hpp"
 #include "krug/fracture/failure_law.hpp"
 #include "krug/material/material.hpp"
 #include "krug/mesh/mesh.hpp"
@@ -33,10 +34,11 @@ struct FractureCounts {
 // counts[b].damaged. Reads the mesh, the hydro and strength state; writes the fracture state (and,
 // for a zone that becomes damaged, fracture::damage_zone's stress, pressure and hourglass state).
 // Zone by zone, so in blocks on up to `threads` threads (solver/parallel.hpp) with the same result.
+// `shapes`: every zone's fracture::initial_shape, computed once (empty: computed as needed).
 void evaluate_failure_laws(const Mesh& mesh, ZoneState& state, const std::vector<Body>& bodies,
                            const std::vector<Material>& materials, const std::vector<fracture::FailureLaw>& laws,
                            GeometryKind geometry, double now, double dt, std::vector<FractureCounts>& counts,
-                           int threads = 1);
+                           int threads = 1, const std::vector<fracture::InitialShape>& shapes = {});
 
 // Why a zone leaves the grid: fully fractured on a free surface (the paper's rule), damaged in the
 // interior (a documented deviation: f_i, an inverted corner, the time-step floor), or eroded.

@@ -169,6 +169,7 @@ class Simulation {
   boundary::Boundary boundary_;  // kinematic conditions and loads: their slots in the step, their books
   contact::ContactSolver contact_;
   std::vector<fracture::FailureLaw> failure_laws_;  // per body
+  std::vector<fracture::InitialShape> initial_shapes_;  // per zone, from x0 (with fracture on; again at a restore)
   bool fracture_enabled_ = false;
   bool topology_changed_ = false;
   contact::ContactStatistics last_contact_;
