@@ -11,7 +11,6 @@ namespace krug::contact {
 
 // --- candidates ---------------------------------------------------------------------------------
 
-
 void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, const BodyBoundary& masters,
                                                 double friction, double weight, bool self, double dt_next,
                                                 Index pair, std::size_t search, int threads) {
