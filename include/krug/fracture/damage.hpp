@@ -130,9 +130,10 @@ long damage_zones(const Mesh& mesh, ZoneState& state, Index zone_begin, Index zo
     if constexpr ((needs & input::stretches) != 0) {
       // Below the law's stretch bound the stretches cannot fire and stay at the identity (which fires
       // nothing either): the same criterion fires as with the exact stretches.
-      if (!(stretch_limit == std::numeric_limits<double>::infinity() ||
-            stretches_below(mesh, z, axisymmetric, stretch_limit,
-                            shapes != nullptr ? shapes[z] : initial_shape(mesh, z)))) {
+      const bool below = stretch_limit == std::numeric_limits<double>::infinity() ||
+                         (shapes != nullptr ? stretches_below(mesh, z, axisymmetric, stretch_limit, shapes[z])
+                                            : stretches_below(mesh, z, axisymmetric, stretch_limit));
+      if (!below) {
         point.stretch = zone_stretches(mesh, z, axisymmetric);
       }
     }
