@@ -69,8 +69,10 @@ void ContactSolver::add_node_segment_candidates(const BodyBoundary& slaves, cons
       }
       for (const Found& f : found) {
         // Behind this face's line but deeper than behind (or in front of) another face it projects onto:
-        // that face is the one it touches.
-        if (f.gap < 0.0 && f.gap < shallowest - end_slack * f.candidate.length) continue;
+        // that face is the one it touches. A node on the line itself (within the slack) keeps the face:
+        // sliding along the line beyond a convex corner's end, it steps onto the face next.
+        const double slack = end_slack * f.candidate.length;
+        if (f.gap < -slack && f.gap < shallowest - slack) continue;
         out.push_back(f.candidate);
       }
     }

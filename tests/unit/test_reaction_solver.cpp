@@ -470,3 +470,42 @@ TEST_CASE("node landing on a face near a convex corner gets no push from the sid
     check_vec(solver.reaction_force(ContactPoint::node(4)), {0.0, 150.0}, 1e-9);
   }
 }
+
+TEST_CASE("node sliding along a face's line past a convex corner steps onto the face",
+          "[kernels][reaction_solver]") {
+  // The held body: the unit square mapped by (x, y) -> (2x, 2y - xy), corners (0, 0), (2, 0), A = (2, 1),
+  // (0, 2). At A its right face (node 1 -> node 3) ends and its top face (node 3 -> node 2, tangent
+  // t = (-2, 1)/sqrt 5, outward normal n = (1, 2)/sqrt 5) begins: a convex corner of 116.6 degrees.
+  // The moving body, a 0.1 square, has its corner (node 4) on the top face's line 0.01 of the face's
+  // length beyond A, 1e-12 behind the line (grazing it): outside the body, in front of the right face
+  // by 0.02. It moves at 4 t - 0.5 n, along the line into the face's span: its predicted position is
+  // 0.0258 of the way along the top face and 0.01 behind it, past the right face's end (along 1.017).
+  // The top face is the one it touches. A rule that drops a face the node is behind while it is in
+  // front of another face it projects onto (a far side) must keep a face whose line the node is on:
+  // without that, neither face acts and the node passes 0.01 into the body in one step.
+  const ReactionMethod method = GENERATE(ReactionMethod::gauss_seidel, ReactionMethod::summation);
+  const double root5 = std::sqrt(5.0);
+  const Vec2 t{-2.0 / root5, 1.0 / root5}, n{1.0 / root5, 2.0 / root5};
+  const Vec2 corner = Vec2{2.0, 1.0} - 0.01 * root5 * t - 1e-12 * n;
+  Scene scene;
+  add_body(scene, [](Vec2 p) { return Vec2{2.0 * p.x, 2.0 * p.y - p.x * p.y}; }, 1.0, {0.0, 0.0}, true);
+  add_body(scene, [corner](Vec2 p) { return corner + 0.1 * p; }, 1.0, 4.0 * t - 0.5 * n);
+  const double before = predicted_gap(scene, 4, 3, 2);
+  INFO("predicted gap of node 4 from the top face before the solve " << before);
+  REQUIRE(before < -0.009);  // the unconstrained step would take it 0.01 into the body
+  ContactSolver solver = pair_solver(scene, method);
+  solver.solve(nodes_view(scene.mesh.nodes), particles_view(scene.particles), dt_mid, dt_next);
+  // Gauss-Seidel closes the gap to the grazing start (the start gap -1e-12 is kept as a pre-existing
+  // overlap): R = 0.01 / (dt_mid dt_next w) = 50. The summation method weights a two-way pair's
+  // reactions 1/2 (the paper's, ContactSetup), so its one pass closes half: -0.005.
+  if (method == ReactionMethod::gauss_seidel) {
+    CHECK(predicted_gap(scene, 4, 3, 2) > -2e-12);
+    CHECK(dot(solver.reaction_force(ContactPoint::node(4)), n) == Approx(50.0).epsilon(1e-9));
+  } else {
+    CHECK(predicted_gap(scene, 4, 3, 2) == Approx(0.5 * before).epsilon(1e-9));
+  }
+  // Only the top face pushes: along n, nothing across it.
+  const Vec2 reaction = solver.reaction_force(ContactPoint::node(4));
+  CHECK(std::abs(reaction.x * t.x + reaction.y * t.y) < 1e-9 * norm(reaction));
+  CHECK(dot(reaction, n) > 0.0);
+}

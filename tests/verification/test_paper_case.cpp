@@ -210,11 +210,15 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
 // groups converged and knobs; docs/validation/headline_*.csv): the default at 5, 10 and 20 zones per
 // mm, and at 5 and 10 zones per mm sixteen variants of the numerical controls (lead erosion 0.05 /
 // 0.2, hourglass 0.02 / 0.15 whole and by part, c_l 0.15 / 0.25 / 1, c_q 0.5 / 0.75 / 1.5, gap
-// tolerance 1e-6); for the spaced target the three meshes only. Band: [smallest, largest], rounded
-// outwards to 1e-3.
+// tolerance 1e-6); for the spaced target the three meshes, each as eight runs 1e-9 apart in impact
+// speed (the case's own scatter; docs/validation/grazing_spaced_scatter.csv, made after the contact
+// rule for a node on a face's line at a convex corner, docs/verification.md C8). Band: [smallest,
+// largest], rounded outwards to 1e-3.
 //   monolithic 0.114 (10 zones/mm, c_l 0.15)  .. 0.172 (5, c_l 1)           centre 0.143 +- 0.029
 //   layered    0.156 (10, erosion 0.2)        .. 0.209 (5, erosion 0.05)     centre 0.1825 +- 0.0265
-//   spaced     0.150 (5, default)             .. 0.163 (10, default)         centre 0.1565 +- 0.0065
+//   spaced     0.125 (20, a member)           .. 0.154 (5, a member)         centre 0.1395 +- 0.0145
+// (The spaced band was 0.150 .. 0.163, from one run per mesh before that rule; the rule moved the
+// mean of eight at 10 zones per mm from 0.159 to 0.134, and at 5 left it at 0.149.)
 // Ordering asserted: the one that holds in every variant at 5 and 10 zones per mm and at every mesh,
 // layered ahead of monolithic (by 0.026 to 0.068 at 5, 0.029 to 0.071 at 10, 0.046 at 20 zones per
 // mm), so the layered loss at 5 zones per mm lies above the whole monolithic band. Not asserted:
@@ -262,7 +266,7 @@ TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zo
 
 TEST_CASE("paper case, 2.6 g bullet through three spaced 1 mm plates at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("spaced_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: spaced 3 x 1 mm", 0.1565, 0.0065);
+  check_common(run, "paper: spaced 3 x 1 mm", 0.1395, 0.0145);
   // The paper: "plugging of each plate in turn". Damage in order, and a plug out of every plate: the
   // plate is in pieces, or its plug left as free elements, its zones fully fractured and converted
   // (at 5 zones per mm the second plate's does: 72 zones, no piece): the plate's material moving on
