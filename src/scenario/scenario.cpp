@@ -101,6 +101,10 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     if (c.hourglass.subzonal_at_shocks && c.viscosity.model != ViscosityModel::tensor) {
       h->fail("subzonal_at_shocks", "false unless viscosity.model is \"tensor\" (whose switch marks the shocks)");
     }
+    c.hourglass.collapse_pressure =
+        h->number("collapse_pressure", c.hourglass.collapse_pressure, Range::between(0.0, 10.0));
+    c.hourglass.collapse_threshold =
+        h->number("collapse_threshold", c.hourglass.collapse_threshold, Range::between(1.0, 10.0));
     h->finish();
   }
   {

@@ -476,3 +476,97 @@ TEST_CASE("hydro kernels: the tensor viscosity conserves momentum and dissipates
     CHECK(power.viscous == Approx(-rate).epsilon(1e-13));
   }
 }
+
+// The corner-collapse pressure (hourglass.collapse_pressure k, collapse_threshold theta;
+// artificial_forces.hpp): on a unit square of density rho whose corner regions of the median mesh keep
+// their initial masses rho / 4, a corner whose region's density rho_p exceeds theta rho pushes with
+// dp = k c^2 (rho_p - theta rho) through dV(S_p)/dx_q. The expected forces here come from the region's
+// area by central differences of the shoelace formula (exact to round-off: the area is quadratic in
+// the positions), not from the kernel's corner-region algebra. No pressure, viscosity or hourglass
+// control: the corner forces are the collapse pressure's alone.
+TEST_CASE("hydro kernels: the corner-collapse pressure acts past its threshold only, against the fold",
+          "[hydro][kernel][hourglass]") {
+  const double rho0 = 1000.0, c = 1000.0, k = 1.0, theta = 1.5;
+  const quad::Corners square{Vec2{0.0, 0.0}, Vec2{1.0, 0.0}, Vec2{1.0, 1.0}, Vec2{0.0, 1.0}};
+  auto region_area = [](const quad::Corners& x, int p) {
+    const Vec2 centre = 0.25 * (x[0] + x[1] + x[2] + x[3]);
+    const Vec2 a = x[static_cast<std::size_t>(p)];
+    const Vec2 b = 0.5 * (a + x[static_cast<std::size_t>((p + 1) % 4)]);
+    const Vec2 d = 0.5 * (a + x[static_cast<std::size_t>((p + 3) % 4)]);
+    const std::array<Vec2, 4> v{a, b, centre, d};
+    double twice = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) twice += v[i].x * v[(i + 1) % 4].y - v[(i + 1) % 4].x * v[i].y;
+    return 0.5 * twice;
+  };
+  // The zone with its corner 2 moved to `moved` (its mass unchanged: the density from the new area).
+  auto build = [&](Vec2 moved) {
+    quad::Corners x = square;
+    x[2] = moved;
+    OneZone mesh = one_zone(x, GeometryKind::planar, rho0 / quad::area(x), 0.0);
+    for (std::size_t p = 0; p < 4; ++p) mesh.zones.subzone_mass[p] = 0.25 * rho0;
+    mesh.state.hydro.sound_speed[0] = c;
+    return mesh;
+  };
+  ZoneForceParams params = stress_only();
+  params.hourglass.collapse_pressure = k;
+  params.hourglass.collapse_threshold = theta;
+  auto force = [](const OneZone& mesh, std::size_t p) {
+    return Vec2{mesh.state.hydro.corner_force[2 * p], mesh.state.hydro.corner_force[2 * p + 1]};
+  };
+
+  SECTION("a corner pushed in, its region below theta times the zone's density: no force at all") {
+    OneZone mesh = build({0.8, 0.8});
+    const double ratio = 0.25 * rho0 / region_area(positions(mesh), 2) / mesh.zones.density[0];
+    INFO("corner 2's density over the zone's " << ratio);
+    REQUIRE(ratio > 1.0);   // the corner is compressed beyond the zone's mean
+    REQUIRE(ratio < theta); // but inside the dead band
+    compute_forces<GeometryKind::planar>(mesh, params);
+    for (std::size_t p = 0; p < 4; ++p) CHECK((force(mesh, p).x == 0.0 && force(mesh, p).y == 0.0));
+  }
+
+  SECTION("a corner folded into its zone (a dart, the corner reflex): the region's pressure pushes it out") {
+    OneZone mesh = build({0.45, 0.45});
+    const quad::Corners x = positions(mesh);
+    const double rho = mesh.zones.density[0];
+    std::array<double, 4> dp{};
+    for (int p = 0; p < 4; ++p) {
+      const double rho_p = 0.25 * rho0 / region_area(x, p);
+      dp[static_cast<std::size_t>(p)] = rho_p > theta * rho ? k * c * c * (rho_p - theta * rho) : 0.0;
+    }
+    INFO("dp " << dp[0] << " " << dp[1] << " " << dp[2] << " " << dp[3]);
+    REQUIRE(dp[2] > 0.0);  // the folded corner is past the threshold
+    compute_forces<GeometryKind::planar>(mesh, params);
+    const double h = 1e-4;
+    Vec2 sum{0.0, 0.0};
+    for (int q = 0; q < 4; ++q) {
+      Vec2 expected{0.0, 0.0};
+      for (int p = 0; p < 4; ++p) {
+        quad::Corners plus = x, minus = x;
+        plus[static_cast<std::size_t>(q)].x += h;
+        minus[static_cast<std::size_t>(q)].x -= h;
+        expected.x += dp[static_cast<std::size_t>(p)] * (region_area(plus, p) - region_area(minus, p)) / (2.0 * h);
+        plus = x;
+        minus = x;
+        plus[static_cast<std::size_t>(q)].y += h;
+        minus[static_cast<std::size_t>(q)].y -= h;
+        expected.y += dp[static_cast<std::size_t>(p)] * (region_area(plus, p) - region_area(minus, p)) / (2.0 * h);
+      }
+      const Vec2 f = force(mesh, static_cast<std::size_t>(q));
+      INFO("node " << q << ": force (" << f.x << ", " << f.y << ") against (" << expected.x << ", " << expected.y << ")");
+      CHECK(f.x == Approx(expected.x).epsilon(1e-9).margin(1e-9 * dp[2]));
+      CHECK(f.y == Approx(expected.y).epsilon(1e-9).margin(1e-9 * dp[2]));
+      sum += f;
+    }
+    // Momentum: the forces of a zone sum to zero. The folded corner is pushed back out, along (1, 1).
+    CHECK(std::abs(sum.x) < 1e-12 * dp[2]);
+    CHECK(std::abs(sum.y) < 1e-12 * dp[2]);
+    CHECK(force(mesh, 2).x > 0.0);
+    CHECK(force(mesh, 2).y > 0.0);
+  }
+
+  SECTION("off (the default): no force for the same dart") {
+    OneZone mesh = build({0.45, 0.45});
+    compute_forces<GeometryKind::planar>(mesh, stress_only());
+    for (std::size_t p = 0; p < 4; ++p) CHECK((force(mesh, p).x == 0.0 && force(mesh, p).y == 0.0));
+  }
+}

@@ -69,6 +69,11 @@ template <GeometryKind G>
 // compatible update books their work in the zone's internal energy: momentum and energy stay exact.
 // For motion that keeps the regions' volume ratios (affine motion; in RZ also a uniform scaling about
 // the origin) every dp_p is zero.
+//
+// The corner-collapse pressure (settings.collapse) is the same force with a dead band: it adds
+// dp_p = k_c c^2 (rho_p - theta rho) where that is positive, theta the threshold (1.5 by default), and
+// nothing elsewhere. A corner region whose density reaches theta times its zone's is a corner folding
+// into the zone; the one-point hourglass control sees only the zone's mean mode and lets it fold.
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
                                                          const HydroZoneFields& hydro, const ForceSettings settings) {
@@ -78,8 +83,13 @@ template <GeometryKind G>
     const quad::Corners x = batch.corners(i);
     const double rho = zones.density[z];
     const double switch_on = settings.subzonal_at_shocks ? batch.shock[i] : 1.0;
-    if (!(switch_on > 0.0)) continue;
-    const double stiffness = switch_on * settings.subzonal * hydro.sound_speed[z] * hydro.sound_speed[z];
+    const bool subzonal = settings.subzonal > 0.0 && switch_on > 0.0;
+    const bool collapse = settings.collapse > 0.0;
+    if (!subzonal && !collapse) continue;
+    const double c2 = hydro.sound_speed[z] * hydro.sound_speed[z];
+    const double stiffness = subzonal ? switch_on * settings.subzonal * c2 : 0.0;
+    const double collapse_stiffness = settings.collapse * c2;
+    const double collapse_density = settings.collapse_threshold * rho;
     const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
     const Vec2 middle = quad::centre(x);
     std::array<Vec2, 4> force{};
@@ -95,7 +105,10 @@ template <GeometryKind G>
         g = quad::area_gradient(region);
       }
       if (!(volume > 0.0)) continue;  // a collapsed region (the axis corner of a degenerate quad)
-      const double dp = stiffness * (subzone_mass[p] / volume - rho);
+      const double corner_density = subzone_mass[p] / volume;
+      double dp = subzonal ? stiffness * (corner_density - rho) : 0.0;
+      if (collapse && corner_density > collapse_density) dp += collapse_stiffness * (corner_density - collapse_density);
+      if (dp == 0.0) continue;
       // Region corner j as a combination of the zone's nodes: x_p; (x_p + x_p+1)/2; the centre; (x_p-1 + x_p)/2.
       const Vec2 quarter = 0.25 * g[2];
       const int n = quad::next(p), o = quad::next(n), m = quad::prev(p);

@@ -49,6 +49,13 @@ struct HourglassParams {
   // compressing corner (the tensor viscosity's own switch, batch_tensor_viscosity), so that they act at
   // shocks and not in smooth flow. False: everywhere.
   bool subzonal_at_shocks = false;
+  // A corner-collapse pressure, in every body: the subzonal pressure's dead-band form. A corner region of
+  // the median mesh compressed beyond `collapse_threshold` times its zone's density pushes with
+  // dp = collapse_pressure x c^2 (rho_corner - collapse_threshold x rho_zone); below that it does nothing,
+  // so smooth flow, affine or not, never feels it. What it stops is a corner folding into its zone (a
+  // zone turning into a dart), which the one-point hourglass control does not see. 0: off.
+  double collapse_pressure = 0.0;
+  double collapse_threshold = 1.5;
 };
 
 enum class AxisymmetricForm {

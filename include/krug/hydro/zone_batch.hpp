@@ -164,6 +164,8 @@ struct ForceSettings {
   double cl = 0.0;                 // c_l
   double subzonal = 0.0;           // subzonal pressure coefficient; 0: off
   bool subzonal_at_shocks = false; // the subzonal pressures scaled by `shock` (after the tensor viscosity)
+  double collapse = 0.0;           // corner-collapse pressure coefficient; 0: off
+  double collapse_threshold = 1.5; // the corner density, over the zone's, where it starts
   bool consistent_deviator = false;  // RZ control volume with strength: the r-weighted operator B_p
 };
 

@@ -156,6 +156,10 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
   // Only the tensor viscosity marks the shocks; with another model (which the scenario reader refuses)
   // the subzonal pressures act everywhere rather than nowhere.
   settings.subzonal_at_shocks = Visc == ViscosityModel::tensor && params.hourglass.subzonal_at_shocks;
+  // The corner-collapse pressure: every body, compatible forms only.
+  settings.collapse = !settings.area_weighted ? params.hourglass.collapse_pressure : 0.0;
+  settings.collapse_threshold = params.hourglass.collapse_threshold;
+  const bool corner_pressures = settings.subzonal > 0.0 || settings.collapse > 0.0;
   const ZoneFields& zones = mesh.zones;
   ArtificialPower power;
   detail::ZoneBatch batch;
@@ -174,7 +178,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     } else {
       detail::batch_stress_forces<G, false>(batch, count, first, strength);
     }
-    if (settings.subzonal > 0.0 && !settings.subzonal_at_shocks) {
+    if (corner_pressures && !settings.subzonal_at_shocks) {
       detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
     }
     if constexpr (Visc == ViscosityModel::edge) {
@@ -185,7 +189,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
       detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
                                         area_weighted_arrays, power.viscous);
       // At shocks only: after the tensor viscosity, which marks them (batch.shock).
-      if (settings.subzonal > 0.0 && settings.subzonal_at_shocks) {
+      if (corner_pressures && settings.subzonal_at_shocks) {
         detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
       }
     }
