@@ -212,20 +212,26 @@ void check_common(const PaperRun& run, const std::string& name, double band_cent
 // 0.2, hourglass 0.02 / 0.15 whole and by part, c_l 0.15 / 0.25 / 1, c_q 0.5 / 0.75 / 1.5, gap
 // tolerance 1e-6); for the spaced target the three meshes, each as eight runs 1e-9 apart in impact
 // speed (the case's own scatter; docs/validation/grazing_spaced_scatter.csv, made after the contact
-// rule for a node on a face's line at a convex corner, docs/verification.md C8). Band: [smallest,
-// largest], rounded outwards to 1e-3.
+// rule for a node on a face's line at a convex corner, docs/verification.md C8). After that rule the
+// sixteen variants were run again at 5 zones per mm and the reference and five of them at 10, each as
+// eight such runs (docs/validation/grazing_knobs_z5*.csv, grazing_knobs_z10*.csv): every member lies
+// inside the monolithic band below (0.116 to 0.151), and the layered members reach 0.2185 (5 zones per
+// mm, erosion 0.05), above the band of the study before it (0.209), so the layered band takes them in.
+// Band: [smallest, largest] over both studies, rounded outwards to 1e-3.
 //   monolithic 0.114 (10 zones/mm, c_l 0.15)  .. 0.172 (5, c_l 1)           centre 0.143 +- 0.029
-//   layered    0.156 (10, erosion 0.2)        .. 0.209 (5, erosion 0.05)     centre 0.1825 +- 0.0265
+//   layered    0.156 (10, erosion 0.2)        .. 0.219 (5, erosion 0.05)     centre 0.1875 +- 0.0315
 //   spaced     0.125 (20, a member)           .. 0.154 (5, a member)         centre 0.1395 +- 0.0145
 // (The spaced band was 0.150 .. 0.163, from one run per mesh before that rule; the rule moved the
 // mean of eight at 10 zones per mm from 0.159 to 0.134, and at 5 left it at 0.149.)
 // Ordering asserted: the one that holds in every variant at 5 and 10 zones per mm and at every mesh,
 // layered ahead of monolithic (by 0.026 to 0.068 at 5, 0.029 to 0.071 at 10, 0.046 at 20 zones per
-// mm), so the layered loss at 5 zones per mm lies above the whole monolithic band. Not asserted:
-// spaced against either (above monolithic by 0.013, 0.032, 0.036 at 5, 10, 20 zones per mm, below
-// layered by 0.043, 0.006, 0.010), nor the whole bullet's loss (layered minus monolithic -0.014 to
-// 0.049 at 5 and -0.005 to 0.056 at 10 zones per mm over the variants; 0.028, 0.016, 0.036 on the
-// meshes).
+// mm; after the contact rule, on the means of eight, by 0.059 at 5 and 0.054 at 10), so the layered
+// loss at 5 zones per mm lies above the whole monolithic band. Not asserted: spaced against either
+// (before the rule above monolithic by 0.013, 0.032, 0.036 at 5, 10, 20 zones per mm and below layered
+// by 0.043, 0.006, 0.010; after it, on the means of eight, above monolithic by 0.010 and 0.009 at 5
+// and 10 and below layered by 0.049 and 0.045), nor the whole bullet's loss (layered minus monolithic
+// -0.014 to 0.049 at 5 and -0.005 to 0.056 at 10 zones per mm over the variants; 0.028, 0.016, 0.036
+// on the meshes; after the rule 0.022 and 0.036 on the means of eight).
 constexpr double monolithic_centre = 0.143, monolithic_spread = 0.029;
 
 TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones per mm", "[paper]") {
@@ -243,7 +249,7 @@ TEST_CASE("paper case, 2.6 g bullet through the monolithic 3 mm plate at 5 zones
 
 TEST_CASE("paper case, 2.6 g bullet through three 1 mm plates in contact at 5 zones per mm", "[paper]") {
   const PaperRun run = run_paper_case("layered_3x1mm_2.6g_z5.json");
-  check_common(run, "paper: layered 3 x 1 mm", 0.1825, 0.0265);
+  check_common(run, "paper: layered 3 x 1 mm", 0.1875, 0.0315);
   CHECK(loss_of(run) > monolithic_centre + monolithic_spread);  // the paper's claim: layered is the more resistant
   // The paper: "the front layer fractures first, the rear layers bend strongly and separate, and their
   // fracture starts on the axis". Damage in order front to rear; in the two rear plates the first
