@@ -16,6 +16,12 @@
 // cylinder (benchmarks/problems.hpp) after 50 cycles, in the solver's blocks of zones. The zone and
 // strength state is restored from a copy every 16 calls (untimed), so every call starts from nearby states.
 //
+// corner_forces/copper_rz/200x200, corner_forces/sedov_rz/200x200: step 1 of the time step alone
+// (krug::body_corner_forces, the batched force kernel: geometry, stress, edge viscosity with its shared
+// limiters, hourglass, the corner forces stored) on the 40 000 zones of the copper cylinder after 50
+// cycles and of the spherical Sedov blast after 100, one thread. It writes only the corner forces and
+// the viscous speeds, which the next call overwrites, so every call sees the same state.
+//
 //   build/benchmarks/zone_kernels --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -28,6 +34,7 @@
 #include "krug/material/strength.hpp"
 #include "krug/mesh/generators.hpp"
 #include "krug/mesh/quad.hpp"
+#include "krug/solver/hydro_step.hpp"
 #include "krug/solver/parallel.hpp"
 #include "problems.hpp"
 
@@ -162,10 +169,36 @@ void zone_update(benchmark::State& state) {
                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+template <bool copper>
+void corner_forces(benchmark::State& state) {
+  krug::Simulation sim(copper ? krug::problems::copper_cylinder_rz(200) : krug::problems::sedov_axisymmetric(200));
+  for (int cycle = 0; cycle < (copper ? 50 : 100); ++cycle) sim.step();
+  const krug::Mesh& mesh = sim.mesh();
+  krug::ZoneState zones = sim.zone_state();
+  const krug::Body& body = sim.bodies().front();
+  const krug::Material& material = sim.materials()[static_cast<std::size_t>(body.material)];
+  const krug::ZoneForceParams params = krug::zone_force_params(material, sim.controls(), sim.last_time_step());
+  const std::vector<krug::Index> mirror = krug::mirrored_edge_slots(mesh);
+  std::vector<double> limiters(mirror.size(), 0.0);
+  const krug::SharedEdgeLimiters shared{mirror.data(), limiters.data()};
+  double sum = 0.0;
+  for (auto _ : state) {
+    const krug::ArtificialPower power =
+        krug::body_corner_forces(mesh, zones, body, krug::GeometryKind::axisymmetric, params, 1, {}, shared);
+    sum += power.viscous + power.hourglass;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.counters["ns_per_zone"] =
+      benchmark::Counter(static_cast<double>(mesh.zones.size()) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 BENCHMARK(rotation<true>)->Name("rotation/polynomial");
 BENCHMARK(rotation<false>)->Name("rotation/library");
 BENCHMARK(stretches<StretchTest::exact>)->Name("stretches/exact");
 BENCHMARK(stretches<StretchTest::bound>)->Name("stretches/bound");
 BENCHMARK(stretches<StretchTest::bound_cached>)->Name("stretches/bound_cached");
 BENCHMARK(zone_update)->Name("zone_update/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<true>)->Name("corner_forces/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<false>)->Name("corner_forces/sedov_rz/200x200")->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();
