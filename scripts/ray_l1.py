@@ -55,7 +55,7 @@ def text_zones(path):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(description=" ".join(__doc__.split("\n\n")[0].split()))
     parser.add_argument("run", help="a Krug final.vtu, or with --zones a text file of zones")
     parser.add_argument("rays", type=int, help="the mesh's number of rays (angular zones)")
     parser.add_argument("exact", help="the exact profile (CSV with columns r and density)")
