@@ -15,6 +15,10 @@
 //                      E = 0.851072 (shock radius 1 at t = 1), the half space z >= 0 per radian gets
 //                      E / (4 pi) in the zone at the origin; the axis r = 0 is held by the solver,
 //                      slip plane z = 0 (and the outer sides); end time 1.
+//   noh_axisymmetric   Spherical Noh (1987) implosion on the RZ quarter [0, 1]^2: gamma = 5/3, rho = 1,
+//                      e = 0, every node moving at speed 1 towards the origin; the axis r = 0 is held by
+//                      the solver, slip plane z = 0, the outer sides free (the benchmarks take early
+//                      cycles, when every zone ahead of the shock is compressing); end time 0.6.
 //   copper_cylinder_rz Elastic-plastic impact (SI units): a copper cylinder, length = radius = 10 mm,
 //                      in RZ, Mie-Grueneisen EOS (c0 3940 m/s, s 1.49, Gamma0 2.0, rho0 8930) and
 //                      Prandtl-Reuss plasticity with linear hardening (mu 43.3 GPa, Y0 400 MPa,
@@ -24,6 +28,7 @@
 // Zones are square in every problem. The background specific energy of the Sedov problems is a tiny
 // positive value (1e-12 of the blast zone's) instead of 0, so that every zone has a defined sound
 // speed; it changes nothing at the scale of the solution.
+#include <cmath>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -127,6 +132,29 @@ inline SimulationSetup sedov_axisymmetric(int n) {
   detail::hold_side(setup, patch, "i_max", true, false);
   detail::hold_side(setup, patch, "j_max", false, true);
   setup.controls.end_time = sedov_end_time;
+  return setup;
+}
+
+// Spherical Noh implosion on the RZ quarter [0, 1]^2 (z, r) with n x n zones.
+inline SimulationSetup noh_axisymmetric(int n) {
+  constexpr double gamma = 5.0 / 3.0, rho = 1.0;
+  SimulationSetup setup;
+  setup.geometry = GeometryKind::axisymmetric;
+  const generate::Patch patch = detail::gas_rectangle(setup, 1.0, n, 1.0, n, gamma, rho);
+  ZoneFields& zones = setup.mesh.zones;
+  for (Index z = patch.zone_begin; z < patch.zone_end; ++z) {
+    zones.density[z] = rho;
+    zones.specific_energy[z] = 0.0;
+  }
+  NodeFields& nodes = setup.mesh.nodes;
+  for (Index p = patch.node_begin; p < patch.node_end; ++p) {
+    const double radius = std::hypot(nodes.x[p], nodes.y[p]);
+    nodes.u[p] = radius > 0.0 ? -nodes.x[p] / radius : 0.0;
+    nodes.v[p] = radius > 0.0 ? -nodes.y[p] / radius : 0.0;
+  }
+  // The axis (j_min, r = 0) is held by the solver; z = 0 is a slip plane.
+  detail::hold_side(setup, patch, "i_min", true, false);
+  setup.controls.end_time = 0.6;
   return setup;
 }
 

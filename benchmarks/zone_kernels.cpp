@@ -22,6 +22,10 @@
 // cycles and of the spherical Sedov blast after 100, one thread. Besides the corner forces and the
 // viscous speeds, which the next call overwrites, a call adds to the copper's stiffness hourglass state;
 // the zone state is restored from a copy every 16 calls (untimed), as in zone_update.
+// corner_forces/noh_rz_edge/200x200, corner_forces/noh_rz_tensor/200x200: the same kernel on the
+// spherical Noh implosion (benchmarks/problems.hpp) after 20 cycles, when every zone ahead of the shock
+// compresses: with the edge viscosity, and with the tensor viscosity and subzonal pressures at shocks
+// (controls.viscosity.model "tensor", hourglass.subzonal_pressure 2, hourglass.subzonal_at_shocks).
 //
 //   build/benchmarks/zone_kernels --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -170,10 +174,27 @@ void zone_update(benchmark::State& state) {
                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-template <bool copper>
+enum class ForceProblem { copper, sedov, noh_edge, noh_tensor };
+
+krug::SimulationSetup force_problem(ForceProblem problem) {
+  switch (problem) {
+    case ForceProblem::copper: return krug::problems::copper_cylinder_rz(200);
+    case ForceProblem::sedov: return krug::problems::sedov_axisymmetric(200);
+    case ForceProblem::noh_edge: return krug::problems::noh_axisymmetric(200);
+    case ForceProblem::noh_tensor: break;
+  }
+  krug::SimulationSetup setup = krug::problems::noh_axisymmetric(200);
+  setup.controls.viscosity.model = krug::ViscosityModel::tensor;
+  setup.controls.hourglass.subzonal_pressure = 2.0;
+  setup.controls.hourglass.subzonal_at_shocks = true;
+  return setup;
+}
+
+template <ForceProblem problem>
 void corner_forces(benchmark::State& state) {
-  krug::Simulation sim(copper ? krug::problems::copper_cylinder_rz(200) : krug::problems::sedov_axisymmetric(200));
-  for (int cycle = 0; cycle < (copper ? 50 : 100); ++cycle) sim.step();
+  krug::Simulation sim(force_problem(problem));
+  const int cycles = problem == ForceProblem::copper ? 50 : problem == ForceProblem::sedov ? 100 : 20;
+  for (int cycle = 0; cycle < cycles; ++cycle) sim.step();
   const krug::Mesh& mesh = sim.mesh();
   const krug::ZoneState start_state = sim.zone_state();
   krug::ZoneState zones = start_state;
@@ -207,6 +228,8 @@ BENCHMARK(stretches<StretchTest::exact>)->Name("stretches/exact");
 BENCHMARK(stretches<StretchTest::bound>)->Name("stretches/bound");
 BENCHMARK(stretches<StretchTest::bound_cached>)->Name("stretches/bound_cached");
 BENCHMARK(zone_update)->Name("zone_update/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
-BENCHMARK(corner_forces<true>)->Name("corner_forces/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
-BENCHMARK(corner_forces<false>)->Name("corner_forces/sedov_rz/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<ForceProblem::copper>)->Name("corner_forces/copper_rz/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<ForceProblem::sedov>)->Name("corner_forces/sedov_rz/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<ForceProblem::noh_edge>)->Name("corner_forces/noh_rz_edge/200x200")->Unit(benchmark::kMicrosecond);
+BENCHMARK(corner_forces<ForceProblem::noh_tensor>)->Name("corner_forces/noh_rz_tensor/200x200")->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -146,7 +146,9 @@ void Simulation::restore(SimulationState s) {
 }
 
 void Simulation::share_edge_limiters() {
-  if (controls_.viscosity.model != ViscosityModel::edge || !controls_.viscosity.limiter) return;
+  const bool edge_limiters =
+      controls_.viscosity.model == ViscosityModel::edge || controls_.viscosity.model == ViscosityModel::tensor;
+  if (!edge_limiters || !controls_.viscosity.limiter) return;
   mirrored_edges_ = mirrored_edge_slots(state_.mesh);
   edge_limiters_.assign(mirrored_edges_.size(), 0.0);
 }

@@ -14,7 +14,9 @@
 // Hourglass (Flanagan & Belytschko 1981): f_p = -(Q_visc + Q_stiff) gamma_p with
 // Q_visc = k_v rho c sqrt(A) q, dQ_stiff = k_s mu dt (b.b/A) q, q = sum_p gamma_p u_p.
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
+#include <limits>
 
 #include "krug/hydro/zone_batch.hpp"
 
@@ -77,24 +79,39 @@ template <GeometryKind G>
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
                                                          const HydroZoneFields& hydro, const ForceSettings settings) {
+  // Without branches over the batch (it vectorises): a region that the zone-by-zone form skips (a zone
+  // without these pressures, a collapsed region, dp = 0) is masked, with the same values bit for bit.
+  const bool collapse = settings.collapse > 0.0;
+  const double collapse_on = collapse ? 1.0 : 0.0;
+  // The zones' fields first, into the batch's own arrays (the loop below then reads no array that the
+  // compiler must assume its stores could change).
+  constexpr int N = zone_batch;
+  double density[N], sound_speed[N], live[N], subzone_mass[4][N];
   for (int i = 0; i < count; ++i) {
     const Index z = first + i;
-    if (!zones.active[z]) continue;
+    density[i] = zones.density[z];
+    sound_speed[i] = hydro.sound_speed[z];
+    live[i] = zones.active[z] != 0 ? 1.0 : 0.0;
+    for (int p = 0; p < 4; ++p) subzone_mass[p][i] = zones.subzone_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)];
+  }
+  for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
-    const double rho = zones.density[z];
+    const double rho = density[i];
     const double switch_on = settings.subzonal_at_shocks ? batch.shock[i] : 1.0;
-    const bool subzonal = settings.subzonal > 0.0 && switch_on > 0.0;
-    const bool collapse = settings.collapse > 0.0;
-    if (!subzonal && !collapse) continue;
-    const double c2 = hydro.sound_speed[z] * hydro.sound_speed[z];
-    const double stiffness = subzonal ? switch_on * settings.subzonal * c2 : 0.0;
+    const double subzonal_on = (settings.subzonal > 0.0 ? 1.0 : 0.0) * (switch_on > 0.0 ? 1.0 : 0.0);
+    const double zone_on = live[i] * (subzonal_on + collapse_on > 0.0 ? 1.0 : 0.0);
+    const double c2 = sound_speed[i] * sound_speed[i];
+    const double stiffness = subzonal_on != 0.0 ? switch_on * settings.subzonal * c2 : 0.0;
     const double collapse_stiffness = settings.collapse * c2;
     const double collapse_density = settings.collapse_threshold * rho;
-    const double* subzone_mass = &zones.subzone_mass[4 * static_cast<std::size_t>(z)];
     const Vec2 middle = quad::centre(x);
     std::array<Vec2, 4> force{};
+#pragma GCC unroll 4
     for (int p = 0; p < 4; ++p) {
-      const quad::Corners region = quad::corner_region(x, p, middle);
+      // quad::corner_region, built from its components (an aggregate copy of x would not vectorise).
+      const Vec2 corner{x[p].x, x[p].y};
+      const quad::Corners region{corner, 0.5 * (corner + x[quad::next(p)]), Vec2{middle.x, middle.y},
+                                 0.5 * (x[quad::prev(p)] + corner)};
       double volume = 0.0;
       std::array<Vec2, 4> g;  // dV(S_p)/d(region corner j)
       if constexpr (G == GeometryKind::axisymmetric) {
@@ -104,22 +121,27 @@ template <GeometryKind G>
         volume = quad::area(region);
         g = quad::area_gradient(region);
       }
-      if (!(volume > 0.0)) continue;  // a collapsed region (the axis corner of a degenerate quad)
-      const double corner_density = subzone_mass[p] / volume;
-      double dp = subzonal ? stiffness * (corner_density - rho) : 0.0;
-      if (collapse && corner_density > collapse_density) dp += collapse_stiffness * (corner_density - collapse_density);
-      if (dp == 0.0) continue;
+      const double corner_density = subzone_mass[p][i] / volume;
+      const double subzonal_dp = subzonal_on != 0.0 ? stiffness * (corner_density - rho) : 0.0;
+      const double excess = collapse_stiffness * (corner_density - collapse_density);
+      const double dp = collapse_on * (corner_density > collapse_density ? 1.0 : 0.0) != 0.0 ? subzonal_dp + excess : subzonal_dp;
+      // Not a collapsed region (the axis corner of a degenerate quad), and a pressure to apply.
+      const bool on = zone_on * (volume > 0.0 ? 1.0 : 0.0) * (dp != 0.0 ? 1.0 : 0.0) != 0.0;
       // Region corner j as a combination of the zone's nodes: x_p; (x_p + x_p+1)/2; the centre; (x_p-1 + x_p)/2.
       const Vec2 quarter = 0.25 * g[2];
       const int n = quad::next(p), o = quad::next(n), m = quad::prev(p);
-      force[p] += dp * (g[0] + 0.5 * g[1] + quarter + 0.5 * g[3]);
-      force[n] += dp * (0.5 * g[1] + quarter);
-      force[o] += dp * quarter;
-      force[m] += dp * (quarter + 0.5 * g[3]);
+      const Vec2 at_p = dp * (g[0] + 0.5 * g[1] + quarter + 0.5 * g[3]);
+      const Vec2 at_n = dp * (0.5 * g[1] + quarter);
+      const Vec2 at_o = dp * quarter;
+      const Vec2 at_m = dp * (quarter + 0.5 * g[3]);
+      force[p] = {on ? force[p].x + at_p.x : force[p].x, on ? force[p].y + at_p.y : force[p].y};
+      force[n] = {on ? force[n].x + at_n.x : force[n].x, on ? force[n].y + at_n.y : force[n].y};
+      force[o] = {on ? force[o].x + at_o.x : force[o].x, on ? force[o].y + at_o.y : force[o].y};
+      force[m] = {on ? force[m].x + at_m.x : force[m].x, on ? force[m].y + at_m.y : force[m].y};
     }
     for (int p = 0; p < 4; ++p) {
-      batch.fx[p][i] += force[p].x;
-      batch.fy[p][i] += force[p].y;
+      batch.fx[p][i] = zone_on != 0.0 ? batch.fx[p][i] + force[p].x : batch.fx[p][i];
+      batch.fy[p][i] = zone_on != 0.0 ? batch.fy[p][i] + force[p].y : batch.fy[p][i];
     }
   }
 }
@@ -230,128 +252,217 @@ template <GeometryKind G>
 [[gnu::noinline]] inline void batch_tensor_viscosity(ZoneBatch& batch, int count, Index first, const Mesh& mesh,
                                                           HydroZoneFields& hydro, Index zone_begin,
                                                           const ZoneForceParams& params, const ForceSettings settings,
-                                                          AreaWeightedArrays area_weighted_arrays, double& viscous_power) {
+                                                          AreaWeightedArrays area_weighted_arrays,
+                                                          SharedEdgeLimiters shared_limiters, double& viscous_power) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
+  constexpr int N = zone_batch;
   const bool area_weighted = axisymmetric && settings.area_weighted;
+  const bool consistent_volumes = axisymmetric && !area_weighted;
   const ZoneFields& zones = mesh.zones;
-  double power = viscous_power;
-  for (int i = 0; i < count; ++i) batch.shock[i] = 0.0;
+  // The zones are taken a batch at a time in phases, each a loop over the batch: the corners' regions and
+  // compression, the edges' gradients, their limiters (zone by zone: they read the neighbours), the
+  // corners' coefficients, the side forces, and the dissipation summed in zone and edge order. A corner
+  // or edge that the zone-by-zone form skips is masked: the values are those of that form, bit for bit.
+  // Masks as 64-bit integers (0 or 1), the width of the values they select, so that the loops vectorise.
+  std::int64_t open[4][N], compressing[4][N], any[N], live[N];
+  double cx[N], cy[N], cu[N], cv[N];
+  double mx[4][N], my[4][N], mu_[4][N], mv[4][N], length[4][N], region_area[4][N];
   for (int i = 0; i < count; ++i) {
-    const Index z = first + i;
-    if (!zones.active[z]) continue;
-    const ZoneCorners& n = zones.corners[z];
+    const ZoneCorners& n = zones.corners[first + i];
+    for (int k = 0; k < 4; ++k) open[k][i] = n[k] != n[quad::next(k)] ? 1 : 0;
+    live[i] = zones.active[first + i] ? 1 : 0;
+  }
+  for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
     const std::array<Vec2, 4> u = batch.velocities(i);
     const Vec2 centre = quad::centre(x);
     const Vec2 centre_velocity = 0.25 * (u[0] + u[1] + u[2] + u[3]);
+    cx[i] = centre.x;
+    cy[i] = centre.y;
+    cu[i] = centre_velocity.x;
+    cv[i] = centre_velocity.y;
     std::array<Vec2, 4> mid, mid_velocity;
-    std::array<double, 4> length;
+#pragma GCC unroll 4
     for (int k = 0; k < 4; ++k) {
       const int k1 = quad::next(k);
       mid[k] = 0.5 * (x[k] + x[k1]);
       mid_velocity[k] = 0.5 * (u[k] + u[k1]);
-      length[k] = n[k] == n[k1] ? 0.0 : norm(x[k1] - x[k]);
+      mx[k][i] = mid[k].x;
+      my[k][i] = mid[k].y;
+      mu_[k][i] = mid_velocity[k].x;
+      mv[k][i] = mid_velocity[k].y;
+      const double edge = norm(x[k1] - x[k]);
+      length[k][i] = open[k][i] != 0 ? edge : 0.0;
     }
     // The compression test: the divergence over each corner's region (x_p, mid of e2, centre, mid of e1).
-    std::array<double, 4> region_area{};
-    std::array<bool, 4> compressing{};
-    bool any = false;
+    std::int64_t zone_any = 0;
+#pragma GCC unroll 4
     for (int p = 0; p < 4; ++p) {
       const int m = quad::prev(p);
       const Vec2 diagonal_a = centre - x[p], diagonal_b = mid[m] - mid[p];
       const double a = 0.5 * cross(diagonal_a, diagonal_b);
-      region_area[p] = a;
-      if (!(a > 0.0)) continue;
+      region_area[p][i] = a;
       const double flux = cross(centre_velocity - u[p], diagonal_b) - cross(mid_velocity[m] - mid_velocity[p], diagonal_a);
-      compressing[p] = flux < 0.0;
-      any = any || compressing[p];
+      compressing[p][i] = (a > 0.0) & (flux < 0.0) ? 1 : 0;
+      zone_any = zone_any | compressing[p][i];
     }
-    if (!any) {
-      hydro.viscous_speed[z] = 0.0;
-      continue;
-    }
-    // Velocity gradient along each edge and its limiter.
-    std::array<Vec2, 4> gradient{};
-    std::array<double, 4> gradient2{}, psi{};
+    any[i] = zone_any & live[i];
+  }
+  // Velocity gradient along each edge.
+  double gx[4][N], gy[4][N], gradient2[4][N], psi[4][N];
+  std::int64_t graded[4][N];
+  for (int i = 0; i < count; ++i) {
+#pragma GCC unroll 4
     for (int k = 0; k < 4; ++k) {
-      if (!(length[k] > 0.0)) continue;
       const int k1 = quad::next(k);
-      const Vec2 du = u[k1] - u[k];
-      if (!(norm(du) > 1e-150)) continue;  // a negligible difference: no gradient (and no denormals)
-      gradient[k] = (1.0 / length[k]) * du;
-      gradient2[k] = dot(gradient[k], gradient[k]);
-      // The limiter only of an edge a compressing corner reads (its corners k and k + 1).
-      if (params.viscosity.limiter && (compressing[k] || compressing[k1])) {
-        psi[k] = zone_edge_limiter(mesh, z, k, zone_begin, du, x[k1] - x[k], {});
+      const double dux = batch.u[k1][i] - batch.u[k][i], duy = batch.v[k1][i] - batch.v[k][i];
+      // A negligible difference: no gradient (and no denormals).
+      const bool ok = (length[k][i] > 0.0) & (std::sqrt(dux * dux + duy * duy) > 1e-150);
+      const double inverse = 1.0 / length[k][i];
+      const double x_part = inverse * dux, y_part = inverse * duy;
+      gx[k][i] = ok ? x_part : 0.0;
+      gy[k][i] = ok ? y_part : 0.0;
+      gradient2[k][i] = ok ? x_part * x_part + y_part * y_part : 0.0;
+      graded[k][i] = ok ? 1 : 0;
+      psi[k][i] = 0.0;
+    }
+  }
+  // The limiter only of an edge a compressing corner reads (its corners k and k + 1), taken from the
+  // mirrored edge of an earlier zone where that zone computed it (the same value, seen from the other
+  // side); a slot not computed this step is marked NaN for the zones after it.
+  if (params.viscosity.limiter) {
+    constexpr double not_computed = std::numeric_limits<double>::quiet_NaN();
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      const quad::Corners x = batch.corners(i);
+      const std::array<Vec2, 4> u = batch.velocities(i);
+      for (int k = 0; k < 4; ++k) {
+        const int k1 = quad::next(k);
+        const std::size_t slot = 4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k);
+        if (!(any[i] != 0 && graded[k][i] != 0 && (compressing[k][i] | compressing[k1][i]) != 0)) {
+          if (shared_limiters.value) shared_limiters.value[slot] = not_computed;
+          continue;
+        }
+        const Index mirror = shared_limiters.mirror ? shared_limiters.mirror[slot] : -1;
+        if (mirror >= 4 * zone_begin && zones.active[mirror / 4] && !std::isnan(shared_limiters.value[mirror])) {
+          psi[k][i] = shared_limiters.value[mirror];
+          continue;
+        }
+        psi[k][i] = zone_edge_limiter(mesh, z, k, zone_begin, u[k1] - u[k], x[k1] - x[k], {});
+        if (shared_limiters.value) shared_limiters.value[slot] = psi[k][i];
       }
     }
-    const double rho = zones.density[z];
-    const double c = hydro.sound_speed[z];
-    const double stable_length = quad::stable_length(x, batch.area[i]);
-    std::array<double, 4> corner_volume{};
-    if (axisymmetric && !area_weighted) corner_volume = quad::axisymmetric_corner_volumes(x);
-    // Each corner's coefficient mu_c w_c and cosine; its stress along e1 (before) and e2 (after).
-    std::array<Vec2, 4> q_before{}, q_after{};
-    std::array<double, 4> cosine{};
-    double viscous_speed = 0.0;
+  }
+  // Each corner's coefficient mu_c w_c and cosine; its stress along e1 (before) and e2 (after).
+  double before_x[4][N], before_y[4][N], after_x[4][N], after_y[4][N], cosine[4][N];
+  double speed[N], stable_length[N], volume[4][N];
+  for (int i = 0; i < count; ++i) stable_length[i] = quad::stable_length(batch.corners(i), batch.area[i]);
+  if (consistent_volumes) {
+    for (int i = 0; i < count; ++i) {
+      const std::array<double, 4> corner_volume = quad::axisymmetric_corner_volumes(batch.corners(i));
+      for (int p = 0; p < 4; ++p) volume[p][i] = corner_volume[p];
+    }
+  } else {
+    for (int i = 0; i < count; ++i) {
+      for (int p = 0; p < 4; ++p) volume[p][i] = region_area[p][i];
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    const quad::Corners x = batch.corners(i);
+    const std::array<Vec2, 4> u = batch.velocities(i);
+    const Vec2 centre{cx[i], cy[i]}, centre_velocity{cu[i], cv[i]};
+    const double rho = zones.density[first + i];
+    const double c = hydro.sound_speed[first + i];
+    double shock = 0.0, viscous_speed = 0.0;
+#pragma GCC unroll 4
     for (int p = 0; p < 4; ++p) {
-      if (!compressing[p]) continue;
       const int m = quad::prev(p), p1 = quad::next(p);
-      const double l1 = length[m], l2 = length[p];
-      const double weights = gradient2[m] + gradient2[p];
-      if (!(weights > 0.0)) continue;
-      const double limiter = (psi[m] * gradient2[m] + psi[p] * gradient2[p]) / weights;
+      const double l1 = length[m][i], l2 = length[p][i];
+      const double weights = gradient2[m][i] + gradient2[p][i];
+      const double limiter = (psi[m][i] * gradient2[m][i] + psi[p][i] * gradient2[p][i]) / weights;
       const double active = 1.0 - limiter;
-      if (!(active > 0.0)) continue;
-      batch.shock[i] = std::max(batch.shock[i], active);
+      // 1 or 0 as doubles: the vectorised loop selects with them.
+      const double acting = ((any[i] & compressing[p][i]) != 0 ? 1.0 : 0.0) * (weights > 0.0 ? 1.0 : 0.0) * (active > 0.0 ? 1.0 : 0.0);
+      shock = acting != 0.0 ? std::max(shock, active) : shock;
       // A corner of a triangle stored as a quadrilateral has one edge of zero length: its other edge only.
-      double cos_c = 0.0;
-      double shortest = std::max(l1, l2);
-      if (l1 > 0.0 && l2 > 0.0) {
-        cos_c = dot(x[m] - x[p], x[p1] - x[p]) / (l1 * l2);
-        shortest = std::min(l1, l2);
-      }
+      const double low = std::min(l1, l2), high = std::max(l1, l2);
+      const bool two_edges = low > 0.0;  // the lengths are >= 0
+      const Vec2 e1 = x[m] - x[p], e2 = x[p1] - x[p];
+      const double cos_both = dot(e1, e2) / (l1 * l2);
+      const double cos_c = two_edges ? cos_both : 0.0;
+      const double shortest = two_edges ? low : high;
       const double sin2 = 1.0 - cos_c * cos_c;
-      if (!(sin2 >= 1e-4) || !(shortest > 0.0)) continue;  // a flat corner
       // The region's two extents (between its opposite sides) and the velocity differences across them.
-      const Vec2 extent_1 = 0.5 * (mid[p] + centre - x[p] - mid[m]);  // from e1's side to the opposite side
-      const Vec2 extent_2 = 0.5 * (centre + mid[m] - x[p] - mid[p]);  // from e2's side to the opposite side
-      const Vec2 jump_1 = mid_velocity[p] + centre_velocity - u[p] - mid_velocity[m];
-      const Vec2 jump_2 = centre_velocity + mid_velocity[m] - u[p] - mid_velocity[p];
+      const Vec2 mid_p{mx[p][i], my[p][i]}, mid_m{mx[m][i], my[m][i]};
+      const Vec2 mid_velocity_p{mu_[p][i], mv[p][i]}, mid_velocity_m{mu_[m][i], mv[m][i]};
+      const Vec2 extent_1 = 0.5 * (mid_p + centre - x[p] - mid_m);  // from e1's side to the opposite side
+      const Vec2 extent_2 = 0.5 * (centre + mid_m - x[p] - mid_p);  // from e2's side to the opposite side
+      const Vec2 jump_1 = mid_velocity_p + centre_velocity - u[p] - mid_velocity_m;
+      const Vec2 jump_2 = centre_velocity + mid_velocity_m - u[p] - mid_velocity_p;
       const double j1 = dot(jump_1, jump_1), j2 = dot(jump_2, jump_2);
-      const Vec2 jump = j1 >= j2 ? jump_1 : jump_2;
+      const bool first_jump = j1 >= j2;
+      const Vec2 jump{first_jump ? jump_1.x : jump_2.x, first_jump ? jump_1.y : jump_2.y};
       const double du = std::sqrt(std::max(j1, j2));
       const double n1 = norm(extent_1), n2 = norm(extent_2);
-      if (!(n1 > 0.0) || !(n2 > 0.0)) continue;
       // The region's extent along the velocity difference: the extent whose direction is closer to it.
       const bool along_1 = std::abs(dot(extent_1, jump)) * n2 >= std::abs(dot(extent_2, jump)) * n1;
-      const double ratio = along_1 ? n1 / n2 : n2 / n1;
-      const double extent = std::min(std::sqrt(4.0 * region_area[p] * ratio), 2.0 * shortest);
+      const double ratio_1 = n1 / n2, ratio_2 = n2 / n1;
+      const double ratio = along_1 ? ratio_1 : ratio_2;
+      const double extent = std::min(std::sqrt(4.0 * region_area[p][i] * ratio), 2.0 * shortest);
       const double quadratic = settings.cq_s * du;
       const double mu = rho * active * (quadratic + std::sqrt(quadratic * quadratic + settings.cl * settings.cl * c * c)) *
                         extent;
-      const double w = mu * (axisymmetric && !area_weighted ? corner_volume[p] : region_area[p]) / sin2;
-      q_before[p] = w * gradient[m];
-      q_after[p] = w * gradient[p];
-      cosine[p] = cos_c;
-      viscous_speed = std::max(viscous_speed, 2.0 * active * quadratic * std::max(1.0, extent / stable_length));
+      const double w = mu * volume[p][i] / sin2;
+      // Not a flat corner, and a region of two extents.
+      const bool on = acting * (sin2 >= 1e-4 ? 1.0 : 0.0) * (shortest > 0.0 ? 1.0 : 0.0) * (n1 > 0.0 ? 1.0 : 0.0) * (n2 > 0.0 ? 1.0 : 0.0) != 0.0;
+      const double bx = w * gx[m][i], by = w * gy[m][i], ax = w * gx[p][i], ay = w * gy[p][i];
+      before_x[p][i] = on ? bx : 0.0;
+      before_y[p][i] = on ? by : 0.0;
+      after_x[p][i] = on ? ax : 0.0;
+      after_y[p][i] = on ? ay : 0.0;
+      cosine[p][i] = on ? cos_c : 0.0;
+      const double corner_speed = 2.0 * active * quadratic * std::max(1.0, extent / stable_length[i]);
+      viscous_speed = on ? std::max(viscous_speed, corner_speed) : viscous_speed;
     }
+    batch.shock[i] = shock;
+    speed[i] = viscous_speed;
+  }
+  // The side forces: +F_e on the edge's first node, -F_e on its second; their dissipation.
+  double dissipation[4][N];
+  std::int64_t pushed[4][N];
+  for (int i = 0; i < count; ++i) {
+#pragma GCC unroll 4
     for (int k = 0; k < 4; ++k) {
-      if (!(length[k] > 0.0)) continue;
       const int k1 = quad::next(k);
-      Vec2 force = (1.0 / length[k]) * (q_after[k] + cosine[k] * q_before[k] + q_before[k1] + cosine[k1] * q_after[k1]);
-      if (force.x == 0.0 && force.y == 0.0) continue;
-      batch.fx[k][i] += force.x;
-      batch.fy[k][i] += force.y;
-      batch.fx[k1][i] -= force.x;
-      batch.fy[k1][i] -= force.y;
-      double dissipation = dot(force, u[k1] - u[k]);
-      if (area_weighted) {
-        dissipation *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[k1]]);
-      }
-      power += dissipation;
+      const double inverse = 1.0 / length[k][i];
+      const double fx = inverse * (after_x[k][i] + cosine[k][i] * before_x[k][i] + before_x[k1][i] +
+                                   cosine[k1][i] * after_x[k1][i]);
+      const double fy = inverse * (after_y[k][i] + cosine[k][i] * before_y[k][i] + before_y[k1][i] +
+                                   cosine[k1][i] * after_y[k1][i]);
+      const bool on = (any[i] != 0) & (length[k][i] > 0.0) & !((fx == 0.0) & (fy == 0.0));
+      batch.fx[k][i] = on ? batch.fx[k][i] + fx : batch.fx[k][i];
+      batch.fy[k][i] = on ? batch.fy[k][i] + fy : batch.fy[k][i];
+      batch.fx[k1][i] = on ? batch.fx[k1][i] - fx : batch.fx[k1][i];
+      batch.fy[k1][i] = on ? batch.fy[k1][i] - fy : batch.fy[k1][i];
+      dissipation[k][i] = fx * (batch.u[k1][i] - batch.u[k][i]) + fy * (batch.v[k1][i] - batch.v[k][i]);
+      pushed[k][i] = on ? 1 : 0;
     }
-    hydro.viscous_speed[z] = viscous_speed;
+  }
+  double power = viscous_power;
+  for (int i = 0; i < count; ++i) {
+    const Index z = first + i;
+    if (!zones.active[z]) continue;
+    hydro.viscous_speed[z] = any[i] ? speed[i] : 0.0;
+    if (!any[i]) continue;
+    const ZoneCorners& n = zones.corners[z];
+    for (int k = 0; k < 4; ++k) {
+      if (!pushed[k][i]) continue;
+      double work = dissipation[k][i];
+      if (area_weighted) {
+        work *= 0.5 * (area_weighted_arrays.booking[n[k]] + area_weighted_arrays.booking[n[quad::next(k)]]);
+      }
+      power += work;
+    }
   }
   viscous_power = power;
 }

@@ -187,7 +187,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     }
     if constexpr (Visc == ViscosityModel::tensor) {
       detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
-                                        area_weighted_arrays, power.viscous);
+                                        area_weighted_arrays, shared_limiters, power.viscous);
       // At shocks only: after the tensor viscosity, which marks them (batch.shock).
       if (corner_pressures && settings.subzonal_at_shocks) {
         detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);

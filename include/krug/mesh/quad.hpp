@@ -85,7 +85,9 @@ inline std::array<double, 4> axisymmetric_corner_volumes(const Corners& c) {
   constexpr std::array<double, 2> points{-g, g};
   constexpr std::array<double, 4> xi_sign{-1.0, 1.0, 1.0, -1.0}, eta_sign{-1.0, -1.0, 1.0, 1.0};
   std::array<double, 4> volumes{};
+#pragma GCC unroll 2  // unrolled, so that the batched kernels that call it vectorise
   for (double xi : points) {
+#pragma GCC unroll 2
     for (double eta : points) {
       std::array<double, 4> shape;
       Vec2 d_xi{}, d_eta{};

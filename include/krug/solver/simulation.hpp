@@ -177,7 +177,7 @@ class Simulation {
   std::vector<double> area_weighted_scale_;  // s_p = M_p / M^A_p, renewed every step (area-weighted RZ form only)
   std::vector<double> heat_change_;          // per zone, the artificial heat conduction of the step (scratch)
   std::vector<double> area_weighted_booking_;  // its viscous/hourglass work weight: s_p, 0 on the axis
-  std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge viscosity with limiter only)
+  std::vector<Index> mirrored_edges_;        // mirrored_edge_slots() (edge or tensor viscosity with limiter only)
   NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
