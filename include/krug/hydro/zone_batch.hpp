@@ -96,12 +96,15 @@ inline double edge_limiter(const NodeFields& nodes, Index before, Index a, Index
 }
 
 // The limiter of edge k of zone z, from the mirrored edge of an earlier zone of this loop (which
-// started at zone_begin) where there is one, else computed and kept for a later zone.
+// started at zone_begin) where that zone computed it, else computed and kept for a later zone. A slot
+// holding NaN was not computed this step (the tensor viscosity marks the edges it skips so).
 inline double zone_edge_limiter(const Mesh& mesh, Index z, int k, Index zone_begin, Vec2 du, Vec2 dx,
                                 SharedEdgeLimiters shared) {
   const std::size_t slot = 4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k);
   const Index mirror = shared.mirror ? shared.mirror[slot] : -1;
-  if (mirror >= 4 * zone_begin && mesh.zones.active[mirror / 4]) return shared.value[mirror];
+  if (mirror >= 4 * zone_begin && mesh.zones.active[mirror / 4] && !std::isnan(shared.value[mirror])) {
+    return shared.value[mirror];
+  }
   const ZoneCorners& n = mesh.zones.corners[z];
   const double dx_norm = norm(dx);
   const double psi = edge_limiter(mesh.nodes, mesh.zones.edge_before[z][k], n[k], n[quad::next(k)],

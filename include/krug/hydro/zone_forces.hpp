@@ -12,11 +12,13 @@
 //   s_p = M_p / M^A_p converting the area-weighted acceleration to a force on the nodal mass.
 //
 // The artificial forces (viscosity, subzonal pressures, hourglass control) are in
-// krug/hydro/artificial_forces.hpp; what the parts share is in krug/hydro/zone_batch.hpp.
+// krug/hydro/artificial_forces.hpp and tensor_viscosity.hpp; what the parts share is in
+// krug/hydro/zone_batch.hpp.
 #include <algorithm>
 #include <cmath>
 
 #include "krug/hydro/artificial_forces.hpp"
+#include "krug/hydro/tensor_viscosity.hpp"
 #include "krug/hydro/zone_batch.hpp"
 
 namespace krug {
