@@ -210,6 +210,7 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(steps.growth_cycles);
   w.value(steps.particle_cycles);
   w.value(steps.other_cycles);
+  w.value(steps.damping_cycles);
   w.value(steps.smallest);
   w.value(steps.smallest_time);
   w.value(steps.smallest_body);
@@ -316,6 +317,7 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   steps.growth_cycles = r.value<std::int64_t>();
   steps.particle_cycles = r.value<std::int64_t>();
   steps.other_cycles = r.value<std::int64_t>();
+  steps.damping_cycles = r.value<std::int64_t>();
   steps.smallest = r.value<double>();
   steps.smallest_time = r.value<double>();
   steps.smallest_body = r.value<std::int32_t>();

@@ -141,6 +141,7 @@ std::string summary_json(const Simulation& simulation, const RunResult& result) 
   }
   set_by["growth_limit"] = steps.growth_cycles;
   set_by["particle_travel"] = steps.particle_cycles;
+  set_by["viscous_damping"] = steps.damping_cycles;
   set_by["other"] = steps.other_cycles;
   Json smallest = {{"dt", steps.smallest}, {"time", steps.smallest_time}, {"set_by", time_step_limit_name(steps.smallest_limit)}};
   if (steps.smallest_body >= 0) {
@@ -468,14 +469,18 @@ void RunRecorder::count_time_step(const Simulation& simulation) {
   if (r.zone_cycles.size() != simulation.bodies().size()) r.zone_cycles.assign(simulation.bodies().size(), 0);
   const TimeStepLimit limit = simulation.time_step_limit();
   const Index body = limit == TimeStepLimit::zone ? simulation.body_of_zone(simulation.controlling_zone()) : -1;
-  switch (limit) {
-    case TimeStepLimit::zone:
-      if (body >= 0) ++r.zone_cycles[static_cast<std::size_t>(body)];
-      else ++r.other_cycles;
-      break;
-    case TimeStepLimit::growth: ++r.growth_cycles; break;
-    case TimeStepLimit::particle_travel: ++r.particle_cycles; break;
-    default: ++r.other_cycles; break;
+  if (simulation.step_cut_by_damping()) {
+    ++r.damping_cycles;  // the step just taken, cut after its forces: counted in place of its choice
+  } else {
+    switch (limit) {
+      case TimeStepLimit::zone:
+        if (body >= 0) ++r.zone_cycles[static_cast<std::size_t>(body)];
+        else ++r.other_cycles;
+        break;
+      case TimeStepLimit::growth: ++r.growth_cycles; break;
+      case TimeStepLimit::particle_travel: ++r.particle_cycles; break;
+      default: ++r.other_cycles; break;
+    }
   }
   const double dt = simulation.next_time_step();
   if (limit != TimeStepLimit::end_time && !simulation.finished() && (r.smallest == 0.0 || dt < r.smallest)) {

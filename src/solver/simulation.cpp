@@ -65,6 +65,9 @@ void Simulation::initialise() {
   build_edge_continuations(state_.mesh);
   node_corners_ = node_corners(state_.mesh);
   share_edge_limiters();
+  if (controls_.viscosity.model == ViscosityModel::tensor) {
+    damping_rows_.assign(4 * static_cast<std::size_t>(zones.size()), 0.0);  // present: the step reads its bound
+  }
   if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
     area_weighted_work_.assign(state_.zone_state.hydro.corner_force.size(), 0.0);  // present: the form's per-step arrays
   }
@@ -94,6 +97,7 @@ void Simulation::step() {
   last_step_mid_ = 0.5 * (state_.time_step_previous + state_.time_step_next);
   try {
     compute_forces();
+    limit_step_by_damping();
     // 2 and 3. The step was chosen from the particles' velocities before this solve (step 8), and the
     // solve can speed a particle up: one pinched between two others is driven out sideways, many times
     // faster, and may pass through another that is not among its candidates. When the solve moves a
@@ -167,13 +171,38 @@ void Simulation::compute_forces() {
     const ZoneForceParams params = zone_force_params(material, controls_, state_.time_step_previous);
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
-    artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] = body_corner_forces(
-        state_.mesh, state_.zone_state, body, geometry_, params, controls_.threads, area_weighted, limiters);
+    artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] =
+        body_corner_forces(state_.mesh, state_.zone_state, body, geometry_, params, controls_.threads, area_weighted,
+                           limiters, damping_rows_.empty() ? nullptr : damping_rows_.data());
   }
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     sum_corner_forces(state_.mesh.nodes, state_.zone_state.hydro, node_corners_, first, last);
   });
   if (boundary_.has_loads()) boundary_.apply_loads(state_.mesh.nodes, state_.mesh.zones, geometry_, state_.time);
+}
+
+void Simulation::limit_step_by_damping() {
+  step_cut_by_damping_ = false;
+  if (damping_rows_.empty()) return;
+  const NodeFields& nodes = state_.mesh.nodes;
+  double bound = std::numeric_limits<double>::infinity();
+  for (const double b : block_results<double>(0, nodes.size(), controls_.threads, [&](Index first, Index last) {
+         return damping_time_step(nodes, damping_rows_.data(), node_corners_, first, last);
+       })) {
+    bound = std::min(bound, b);
+  }
+  // The velocity update uses dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2: dt^{n+1/2} <= bound, and dt^n too
+  // where that leaves dt^{n+1/2} at least bound / 2 (the bound fell by less than 1.5 times in a step).
+  const double dt = std::min(bound, std::max(2.0 * bound - state_.time_step_previous, 0.5 * bound));
+  if (!(dt < state_.time_step_next)) return;
+  if (dt < state_.time_step_floor) {
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s (the tensor viscosity's damping)", dt,
+                     state_.time_step_floor),
+         state_.controlling_zone);
+  }
+  state_.time_step_next = dt;
+  step_cut_by_damping_ = true;
+  last_step_mid_ = 0.5 * (state_.time_step_previous + state_.time_step_next);
 }
 
 void Simulation::repeat_shorter(double dt, const Ledger& before_predictor, double deepest_gap) {

@@ -190,7 +190,7 @@ TEST_CASE("damaged or foreign checkpoints are refused with an InputError", "[app
   flipped[bytes.size() / 3] = static_cast<char>(flipped[bytes.size() / 3] ^ 0x10);
   refused(flipped, "checksum");
   std::string other_version = bytes;
-  other_version[8] = 9;
+  other_version[8] = static_cast<char>(krug::output::checkpoint_version + 1);  // a version this krug does not read
   refused(other_version, "checksum");  // the version is covered by the checksum too
   refused("not a checkpoint at all, but long enough to have a trailer", "KRUGCKPT");
   CHECK_THROWS_AS(krug::output::read_checkpoint(dir / "missing.bin"), krug::InputError);

@@ -27,17 +27,21 @@ TEST_CASE("Tensor viscosity: Sedov spherical on a rectangular RZ mesh", "[sedov]
 }
 
 // Known failure (docs/verification.md F7, tensor viscosity): on the equal-angle polar verification mesh
-// (100 x 40) the tensor viscosity stops at t = 0.016 (zone 2, the axis row next to the origin); the
-// same problem at 50 x 20 and the cylindrical Noh at 100 x 40 (XY) run to the end. The edge viscosity
-// passes this mesh (test_noh.cpp), so the tensor viscosity is not the default.
+// (100 x 40) the tensor viscosity alone no longer tangles (it stopped at t = 0.016 before its step was
+// bounded by its damping at the nodes, docs/theory.md §2), but its step falls to about 1e-6 and it had
+// reached t = 0.42 after 278 306 cycles; the edge viscosity takes 9 724 cycles to t = 0.6 (test_noh.cpp;
+// docs/performance.md, "Speed against error").
+// Judged within three times those cycles, as F7 judges the rectangles against the scalar q.
 TEST_CASE("Tensor viscosity: Noh spherical on an RZ equal-angle polar mesh", "[noh][axisymmetric][tensor][!mayfail]") {
   scenario::Scenario scenario = load_example("noh_spherical.json");
   scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  scenario.setup.controls.max_cycles = 3 * 9'724;
   const Run run = run_to_end(scenario);
   INFO(run.failure);
-  report("Noh, spherical (RZ polar, tensor q)", "reaches t = 0.6", "0.6", run.simulation.time(),
-         run.completed() ? "completed" : "FAILED", run.simulation.mesh().zones.size(), run.seconds);
-  CHECK(run.completed());
+  report("Noh, spherical (RZ polar, tensor q)", "reaches t = 0.6 within 29 172 cycles", "0.6", run.simulation.time(),
+         run.simulation.time() >= 0.6 * (1.0 - 1e-12) ? "completed" : "FAILED", run.simulation.mesh().zones.size(),
+         run.seconds);
+  CHECK(run.simulation.time() >= 0.6 * (1.0 - 1e-12));
 }
 
 // With the gas rezoned where its zones distort (docs/theory.md §2 step 5; `rezone` per body, opt-in),

@@ -36,16 +36,23 @@ namespace detail {
 // (quad::axisymmetric_corner_volumes, the nodal masses' share, docs/verification.md F1), so that each
 // corner's work stays -mu_c V_c |grad u|^2 <= 0; with the median segment's weight (r_edge + 2 r_centre) / 3
 // of the edge viscosity on the side forces instead, the results were the same on F7's rectangles.
-// The time step sees the signal speed 2 (1 - psi_c) c_q s du_c max(1, L_c / h) of the strongest
-// compressing corner, h the zone's stable length: L_c reaches twice the shorter edge, and without the
-// factor the damping of a thin zone (the polar mesh's slivers along the axis) outran the CFL step and
-// oscillated with a growing amplitude.
+// The time step sees the signal speed 2 (1 - psi_c) c_q s du_c of the strongest compressing corner, and
+// the damping at the nodes: the side forces are F = -C u per velocity component, C = E^T A E with E the
+// edges' differences and A (symmetric) from the corners' w_c mu_c and cosines over the edges' lengths.
+// Where `damping_rows` is given, each zone writes there, for each of its corners' nodes p, the row sum
+// sum_q |C_pq| / sqrt(m_q) over its nodes q that move; summed at a node and divided by sqrt(m_p)
+// (damping_time_step, zone_forces.hpp) they give the Gershgorin bound on the largest eigenvalue of
+// M^-1/2 C M^-1/2 (that of M^-1 C), and so the step over which the damping alone stays stable.
+// L_c reaches twice the shorter edge: across a thin zone (the polar mesh's slivers along the axis, its
+// centre triangles) this damping outruns the CFL step, and without a bound it oscillated with a growing
+// amplitude.
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_tensor_viscosity(ZoneBatch& batch, int count, Index first, const Mesh& mesh,
                                                           HydroZoneFields& hydro, Index zone_begin,
                                                           const ZoneForceParams& params, const ForceSettings settings,
                                                           AreaWeightedArrays area_weighted_arrays,
-                                                          SharedEdgeLimiters shared_limiters, double& viscous_power) {
+                                                          SharedEdgeLimiters shared_limiters, double& viscous_power,
+                                                          double* damping_rows) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   constexpr int N = zone_batch;
   const bool area_weighted = axisymmetric && settings.area_weighted;
@@ -141,8 +148,7 @@ template <GeometryKind G>
   }
   // Each corner's coefficient mu_c w_c and cosine; its stress along e1 (before) and e2 (after).
   double before_x[4][N], before_y[4][N], after_x[4][N], after_y[4][N], cosine[4][N];
-  double speed[N], stable_length[N], volume[4][N];
-  for (int i = 0; i < count; ++i) stable_length[i] = quad::stable_length(batch.corners(i), batch.area[i]);
+  double speed[N], volume[4][N], weight[4][N];
   if (consistent_volumes) {
     for (int i = 0; i < count; ++i) {
       const std::array<double, 4> corner_volume = quad::axisymmetric_corner_volumes(batch.corners(i));
@@ -207,7 +213,8 @@ template <GeometryKind G>
       after_x[p][i] = on ? ax : 0.0;
       after_y[p][i] = on ? ay : 0.0;
       cosine[p][i] = on ? cos_c : 0.0;
-      const double corner_speed = 2.0 * active * quadratic * std::max(1.0, extent / stable_length[i]);
+      weight[p][i] = on ? w : 0.0;
+      const double corner_speed = 2.0 * active * quadratic;
       viscous_speed = on ? std::max(viscous_speed, corner_speed) : viscous_speed;
     }
     batch.shock[i] = shock;
@@ -232,6 +239,45 @@ template <GeometryKind G>
       batch.fy[k1][i] = on ? batch.fy[k1][i] - fy : batch.fy[k1][i];
       dissipation[k][i] = fx * (batch.u[k1][i] - batch.u[k][i]) + fy * (batch.v[k1][i] - batch.v[k][i]);
       pushed[k][i] = on ? 1 : 0;
+    }
+  }
+  if (damping_rows != nullptr) {
+    for (int i = 0; i < count; ++i) {
+      double* rows = &damping_rows[4 * static_cast<std::size_t>(first + i)];
+      // a[k][j]: the side force of edge k per velocity difference of edge j (j = k - 1, k, k + 1).
+      double a[4][4] = {};
+      for (int k = 0; k < 4; ++k) {
+        const double lk = length[k][i];
+        if (!(lk > 0.0)) continue;
+        const int k1 = quad::next(k), km = quad::prev(k);
+        a[k][k] = (weight[k][i] + weight[k1][i]) / (lk * lk);
+        if (length[km][i] > 0.0) a[k][km] = cosine[k][i] * weight[k][i] / (lk * length[km][i]);
+        if (length[k1][i] > 0.0) a[k][k1] = cosine[k1][i] * weight[k1][i] / (lk * length[k1][i]);
+      }
+      // C = E^T A E, E[k] = (node k1) - (node k).
+      double c[4][4] = {};
+      for (int k = 0; k < 4; ++k) {
+        for (int j = 0; j < 4; ++j) {
+          const int kn[2] = {k, quad::next(k)}, jn[2] = {j, quad::next(j)};
+          for (int s1 = 0; s1 < 2; ++s1) {
+            for (int s2 = 0; s2 < 2; ++s2) c[kn[s1]][jn[s2]] += (s1 == s2 ? 1.0 : -1.0) * a[k][j];
+          }
+        }
+      }
+      // Rows of M^-1/2 C M^-1/2 times sqrt(m_q), over the nodes that move (a node held in both components
+      // drops out of the damped system).
+      const ZoneCorners& n = zones.corners[first + i];
+      double scale[4];
+      for (int j = 0; j < 4; ++j) {
+        const Index node = n[j];
+        const bool held = mesh.nodes.inv_mass_x[node] == 0.0 && mesh.nodes.inv_mass_y[node] == 0.0;
+        scale[j] = held ? 0.0 : 1.0 / std::sqrt(mesh.nodes.mass[node]);
+      }
+      for (int q = 0; q < 4; ++q) {
+        double row = 0.0;
+        for (int j = 0; j < 4; ++j) row += std::abs(c[q][j]) * scale[j];
+        rows[q] = any[i] ? row : 0.0;
+      }
     }
   }
   double power = viscous_power;

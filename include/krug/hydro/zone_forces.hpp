@@ -16,6 +16,7 @@
 // krug/hydro/zone_batch.hpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "krug/hydro/artificial_forces.hpp"
 #include "krug/hydro/tensor_viscosity.hpp"
@@ -133,13 +134,14 @@ template <GeometryKind G>
 // stored forces are the nodes' (s_p times the area-weighted ones), and `area_weighted_arrays.work_correction`
 // receives what turns their work into the zone's own (control-volume) stress work plus its booked
 // viscous and hourglass work. Reads the mesh, hydro.pressure and sound_speed, `strength` and
-// fracture.damaged; writes hydro.corner_force and viscous_speed and `hourglass`.
+// fracture.damaged; writes hydro.corner_force and viscous_speed and `hourglass`, and with the tensor
+// viscosity, where `damping_rows` is given, its damping's row sums (4 per zone, batch_tensor_viscosity).
 template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, const StrengthZoneFields& strength,
                                       HourglassZoneFields& hourglass, const FractureZoneFields& fracture,
                                       Index zone_begin, Index zone_end, const ZoneForceParams& params,
                                       AreaWeightedArrays area_weighted_arrays = {},
-                                      SharedEdgeLimiters shared_limiters = {}) {
+                                      SharedEdgeLimiters shared_limiters = {}, double* damping_rows = nullptr) {
   detail::ForceSettings settings;
   settings.area_weighted = G == GeometryKind::axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   // k_s mu, or E'/3 in the physical form: without shear stiffness (a gas, or k_s = 0 in the coefficient
@@ -189,7 +191,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     }
     if constexpr (Visc == ViscosityModel::tensor) {
       detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
-                                        area_weighted_arrays, shared_limiters, power.viscous);
+                                        area_weighted_arrays, shared_limiters, power.viscous, damping_rows);
       // At shocks only: after the tensor viscosity, which marks them (batch.shock).
       if (corner_pressures && settings.subzonal_at_shocks) {
         detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
@@ -220,6 +222,26 @@ inline void sum_corner_forces(NodeFields& nodes, const HydroZoneFields& hydro, c
     nodes.force_x[node] = fx;
     nodes.force_y[node] = fy;
   }
+}
+
+// The largest step over which the tensor viscosity's damping alone stays stable at the nodes in
+// [node_begin, node_end): 2 min sqrt(m_p) / R_p over the nodes with a free component, R_p the sum of the
+// damping rows (batch_tensor_viscosity) of the node's corners, in the node's corner order. R_p / sqrt(m_p)
+// is the radius of the node's Gershgorin disc of M^-1/2 C M^-1/2 (C symmetric, so its eigenvalues are
+// those of M^-1 C), and forward Euler on M du/dt = -C u is stable while dt times the largest eigenvalue
+// stays within 2. +infinity where no node is damped.
+inline double damping_time_step(const NodeFields& nodes, const double* damping_rows, const NodeCorners& corners,
+                                Index node_begin, Index node_end) {
+  double step = std::numeric_limits<double>::infinity();
+  for (Index node = node_begin; node < node_end; ++node) {
+    if (nodes.inv_mass_x[node] == 0.0 && nodes.inv_mass_y[node] == 0.0) continue;
+    double row = 0.0;
+    for (Index k = corners.offset[node]; k < corners.offset[node + 1]; ++k) {
+      row += damping_rows[static_cast<std::size_t>(corners.slot[k])];
+    }
+    if (row > 0.0) step = std::min(step, 2.0 * std::sqrt(nodes.mass[node]) / row);
+  }
+  return step;
 }
 
 }  // namespace krug

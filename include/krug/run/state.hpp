@@ -33,6 +33,7 @@ struct StopWindow {
 struct TimeStepRecord {
   std::vector<std::int64_t> zone_cycles;  // per body
   std::int64_t growth_cycles = 0, particle_cycles = 0, other_cycles = 0;  // other: max_time_step, end time
+  std::int64_t damping_cycles = 0;  // the tensor viscosity's damping bound
   double smallest = 0.0;                  // s (0: no step yet)
   double smallest_time = 0.0;             // s, when it was taken
   std::int32_t smallest_body = -1, smallest_zone = -1;  // zone within the body; -1 when not a zone's

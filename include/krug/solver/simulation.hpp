@@ -108,6 +108,8 @@ class Simulation {
   const std::vector<boundary::HeldSide>& held_sides() const { return boundary_.held_sides(); }
   const contact::ContactSolver& contact() const { return contact_; }
   double last_step_mid() const { return last_step_mid_; }
+  // Whether the tensor viscosity's damping bound cut the last step after its forces (step 1b).
+  bool step_cut_by_damping() const { return step_cut_by_damping_; }
   // Deepest predicted gap left by contact over the run so far (m, <= 0).
   double deepest_contact_gap() const { return state_.deepest_contact_gap; }
 
@@ -141,6 +143,7 @@ class Simulation {
  private:
   // The recipe, in order.
   void compute_forces();          // 1. F^n: corner forces of every zone, and the boundary loads
+  void limit_step_by_damping();   // 1b. dt^{n+1/2} within the tensor viscosity's damping bound (that model only)
   void predict_velocities();      // 2. u* = u^{n-1/2} + dt^n F / M  (per-DOF inverse masses)
   void solve_contact_reactions(); // 3. R from the predicted gaps; the contact solver applies it as it goes:
                                   //    u^{n+1/2} = u* + dt^n R / M (nothing without contact)
@@ -181,11 +184,13 @@ class Simulation {
   NodeCorners node_corners_;                 // each node's zone corners, in zone order (the force sums)
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
+  std::vector<double> damping_rows_;         // 4 per zone: the tensor viscosity's damping rows (that model only)
   std::vector<ArtificialPower> artificial_power_;  // per body, of step 1 (booked once dt^n is final)
   RezoneScratch rezone_scratch_;                   // the rezone's work arrays (bodies that ask for it)
 
   TimeStepLimit time_step_limit_ = TimeStepLimit::zone;
   double last_step_mid_ = 0.0;  // dt^n of the last step (last_step_mid)
+  bool step_cut_by_damping_ = false;
 };
 
 }  // namespace krug
