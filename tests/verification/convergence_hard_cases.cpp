@@ -143,9 +143,9 @@ TEST_CASE("Hard cases, finer: Sedov spherical on RZ rectangles with the tensor v
 
 // The tensor viscosity with subzonal pressures at shocks only (hourglass.subzonal_pressure 2,
 // subzonal_at_shocks; test_tensor_viscosity.cpp) on the finer rectangles, otherwise default controls.
-// Measured: the Noh at 100 x 100 in 1 173 cycles (shock within 0.3 zones on every ray, plateau 61.47,
-// worst zone 5.7 %) and at 200 x 200 in 2 535 (within 0.4 zones, 62.78, 3.0 %); the Sedov in 1 070
-// and 2 755 cycles, within 0.5 zones on every ray.
+// Measured (with the damping bound, docs/verification.md F7): the Noh at 100 x 100 in 752 cycles (shock
+// within 0.3 zones on every ray, plateau -3.7 %, worst zone 5.5 %) and at 200 x 200 in 1 466 (within
+// 0.4 zones, -1.8 %, 3.0 %); the Sedov in 964 and 2 606 cycles, within 0.4 zones on every ray.
 TEST_CASE("Hard cases, finer: Noh and Sedov spherical on RZ rectangles, tensor viscosity with subzonal pressures at shocks",
           "[convergence][tensor][subzonal][noh][sedov]") {
   const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
