@@ -187,7 +187,8 @@ void Simulation::limit_step_by_damping() {
   const NodeFields& nodes = state_.mesh.nodes;
   double bound = std::numeric_limits<double>::infinity();
   for (const double b : block_results<double>(0, nodes.size(), controls_.threads, [&](Index first, Index last) {
-         return damping_time_step(nodes, damping_rows_.data(), node_corners_, first, last);
+         return damping_time_step(nodes, damping_rows_.data(), node_corners_, first, last,
+                                  area_weighted_work_.empty() ? nullptr : area_weighted_scale_.data());
        })) {
     bound = std::min(bound, b);
   }

@@ -40,7 +40,7 @@ namespace detail {
 // the damping at the nodes: the side forces are F = -C u per velocity component, C = E^T A E with E the
 // edges' differences and A (symmetric) from the corners' w_c mu_c and cosines over the edges' lengths.
 // Where `damping_rows` is given, each zone writes there, for each of its corners' nodes p, the row sum
-// sum_q |C_pq| / sqrt(m_q) over its nodes q that move; summed at a node and divided by sqrt(m_p)
+// sum_q |C_pq| / sqrt(m_q) over its nodes q that move (m_q = M_q / s_q in the area-weighted RZ form); summed at a node and divided by sqrt(m_p)
 // (damping_time_step, zone_forces.hpp) they give the Gershgorin bound on the largest eigenvalue of
 // M^-1/2 C M^-1/2 (that of M^-1 C), and so the step over which the damping alone stays stable.
 // L_c reaches twice the shorter edge: across a thin zone (the polar mesh's slivers along the axis, its
@@ -267,11 +267,14 @@ template <GeometryKind G>
       // Rows of M^-1/2 C M^-1/2 times sqrt(m_q), over the nodes that move (a node held in both components
       // drops out of the damped system).
       const ZoneCorners& n = zones.corners[first + i];
+      // The area-weighted form moves a node by s_p times its area-weighted forces: its mass M_p / s_p.
       double scale[4];
       for (int j = 0; j < 4; ++j) {
         const Index node = n[j];
-        const bool held = mesh.nodes.inv_mass_x[node] == 0.0 && mesh.nodes.inv_mass_y[node] == 0.0;
-        scale[j] = held ? 0.0 : 1.0 / std::sqrt(mesh.nodes.mass[node]);
+        const double s = area_weighted ? area_weighted_arrays.scale[node] : 1.0;
+        const bool held = (mesh.nodes.inv_mass_x[node] == 0.0 && mesh.nodes.inv_mass_y[node] == 0.0) || !(s > 0.0);
+        const double root = area_weighted ? std::sqrt(s / mesh.nodes.mass[node]) : 1.0 / std::sqrt(mesh.nodes.mass[node]);
+        scale[j] = held ? 0.0 : root;
       }
       for (int q = 0; q < 4; ++q) {
         double row = 0.0;

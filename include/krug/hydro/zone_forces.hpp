@@ -229,17 +229,20 @@ inline void sum_corner_forces(NodeFields& nodes, const HydroZoneFields& hydro, c
 // damping rows (batch_tensor_viscosity) of the node's corners, in the node's corner order. R_p / sqrt(m_p)
 // is the radius of the node's Gershgorin disc of M^-1/2 C M^-1/2 (C symmetric, so its eigenvalues are
 // those of M^-1 C), and forward Euler on M du/dt = -C u is stable while dt times the largest eigenvalue
-// stays within 2. +infinity where no node is damped.
+// stays within 2. +infinity where no node is damped. `mass_scale`: the area-weighted RZ form's s_p (its
+// nodes move as if of mass M_p / s_p), else null.
 inline double damping_time_step(const NodeFields& nodes, const double* damping_rows, const NodeCorners& corners,
-                                Index node_begin, Index node_end) {
+                                Index node_begin, Index node_end, const double* mass_scale = nullptr) {
   double step = std::numeric_limits<double>::infinity();
   for (Index node = node_begin; node < node_end; ++node) {
     if (nodes.inv_mass_x[node] == 0.0 && nodes.inv_mass_y[node] == 0.0) continue;
+    const double s = mass_scale ? mass_scale[node] : 1.0;
+    if (!(s > 0.0)) continue;
     double row = 0.0;
     for (Index k = corners.offset[node]; k < corners.offset[node + 1]; ++k) {
       row += damping_rows[static_cast<std::size_t>(corners.slot[k])];
     }
-    if (row > 0.0) step = std::min(step, 2.0 * std::sqrt(nodes.mass[node]) / row);
+    if (row > 0.0) step = std::min(step, 2.0 * std::sqrt(nodes.mass[node] / s) / row);
   }
   return step;
 }
