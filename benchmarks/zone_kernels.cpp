@@ -206,7 +206,11 @@ void corner_forces(benchmark::State& state) {
   std::vector<double> limiters(mirror.size(), 0.0);
   const krug::SharedEdgeLimiters shared{mirror.data(), limiters.data()};
   // The tensor viscosity's damping rows, which the time step reads in a run.
-  std::vector<double> damping(problem == ForceProblem::noh_tensor ? 4 * static_cast<std::size_t>(mesh.zones.size()) : 0, 0.0);
+  const bool tensor = problem == ForceProblem::noh_tensor;
+  std::vector<double> damping_rows(tensor ? 4 * static_cast<std::size_t>(mesh.zones.size()) : 0, 0.0);
+  std::vector<double> damping_scale(tensor ? mesh.nodes.size() : 0, 0.0);
+  if (tensor) krug::damping_node_scale(mesh.nodes, 0, mesh.nodes.size(), damping_scale.data());
+  const krug::DampingRows damping = tensor ? krug::DampingRows{damping_scale.data(), damping_rows.data()} : krug::DampingRows{};
   double sum = 0.0;
   int calls = 0;
   for (auto _ : state) {
@@ -217,7 +221,7 @@ void corner_forces(benchmark::State& state) {
     }
     const krug::ArtificialPower power =
         krug::body_corner_forces(mesh, zones, body, krug::GeometryKind::axisymmetric, params, 1, {}, shared,
-                                 damping.empty() ? nullptr : damping.data());
+                                 damping);
     sum += power.viscous + power.hourglass;
   }
   benchmark::DoNotOptimize(sum);

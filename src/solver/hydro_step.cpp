@@ -25,12 +25,12 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
 
 ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
                                    const ZoneForceParams& params, int threads, AreaWeightedArrays area_weighted,
-                                   SharedEdgeLimiters limiters, double* damping_rows) {
+                                   SharedEdgeLimiters limiters, DampingRows damping) {
   std::vector<ArtificialPower> block_power;
   auto run = [&]<GeometryKind G, ViscosityModel V>() {
     block_power = block_results<ArtificialPower>(body.zone_begin, body.zone_end, threads, [&](Index first, Index last) {
       return compute_corner_forces<G, V>(mesh, state.hydro, state.strength, state.hourglass, state.fracture, first, last,
-                                         params, area_weighted, limiters, damping_rows);
+                                         params, area_weighted, limiters, damping);
     });
   };
   auto run_geometry = [&]<GeometryKind G>() {

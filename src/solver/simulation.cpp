@@ -67,6 +67,7 @@ void Simulation::initialise() {
   share_edge_limiters();
   if (controls_.viscosity.model == ViscosityModel::tensor) {
     damping_rows_.assign(4 * static_cast<std::size_t>(zones.size()), 0.0);  // present: the step reads its bound
+    damping_scale_.assign(nodes.size(), 0.0);
   }
   if (axisymmetric && controls_.axisymmetric_form == AxisymmetricForm::area_weighted) {
     area_weighted_work_.assign(state_.zone_state.hydro.corner_force.size(), 0.0);  // present: the form's per-step arrays
@@ -165,6 +166,14 @@ void Simulation::compute_forces() {
   if (!area_weighted_work_.empty()) area_weighted_scale(state_.mesh, bodies_, area_weighted_scale_, area_weighted_booking_);
   const AreaWeightedArrays area_weighted{area_weighted_scale_.data(), area_weighted_booking_.data(),
                                          area_weighted_work_.data()};
+  DampingRows damping;
+  if (!damping_rows_.empty()) {
+    const double* mass_scale = area_weighted_work_.empty() ? nullptr : area_weighted_scale_.data();
+    for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
+      damping_node_scale(state_.mesh.nodes, first, last, damping_scale_.data(), mass_scale);
+    });
+    damping = {damping_scale_.data(), damping_rows_.data()};
+  }
   artificial_power_.resize(bodies_.size());
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
@@ -173,7 +182,7 @@ void Simulation::compute_forces() {
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
     artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] =
         body_corner_forces(state_.mesh, state_.zone_state, body, geometry_, params, controls_.threads, area_weighted,
-                           limiters, damping_rows_.empty() ? nullptr : damping_rows_.data());
+                           limiters, damping);
   }
   for_each_block(0, state_.mesh.nodes.size(), controls_.threads, [&](Index, Index first, Index last) {
     sum_corner_forces(state_.mesh.nodes, state_.zone_state.hydro, node_corners_, first, last);
@@ -184,22 +193,27 @@ void Simulation::compute_forces() {
 void Simulation::limit_step_by_damping() {
   step_cut_by_damping_ = false;
   if (damping_rows_.empty()) return;
-  const NodeFields& nodes = state_.mesh.nodes;
-  double bound = std::numeric_limits<double>::infinity();
-  for (const double b : block_results<double>(0, nodes.size(), controls_.threads, [&](Index first, Index last) {
-         return damping_time_step(nodes, damping_rows_.data(), node_corners_, first, last,
-                                  area_weighted_work_.empty() ? nullptr : area_weighted_scale_.data());
+  DampingBound damping;
+  for (const DampingBound& b :
+       block_results<DampingBound>(0, state_.mesh.nodes.size(), controls_.threads, [&](Index first, Index last) {
+         return damping_bound(state_.mesh.nodes, damping_rows_.data(), damping_scale_.data(), node_corners_, first, last,
+                              area_weighted_work_.empty() ? nullptr : area_weighted_scale_.data());
        })) {
-    bound = std::min(bound, b);
+    damping.merge(b);
   }
+  const double bound = damping.step;
   // The velocity update uses dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2: dt^{n+1/2} <= bound, and dt^n too
   // where that leaves dt^{n+1/2} at least bound / 2 (the bound fell by less than 1.5 times in a step).
   const double dt = std::min(bound, std::max(2.0 * bound - state_.time_step_previous, 0.5 * bound));
   if (!(dt < state_.time_step_next)) return;
   if (dt < state_.time_step_floor) {
-    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s (the tensor viscosity's damping)", dt,
-                     state_.time_step_floor),
-         state_.controlling_zone);
+    // Named by the first zone of the node the bound is set at.
+    const Index node = damping.node;
+    const Index zone = node_corners_.slot[static_cast<std::size_t>(node_corners_.offset[static_cast<std::size_t>(node)])] / 4;
+    fail(fmt::format("time step {:.3e} s fell below its floor {:.3e} s (the tensor viscosity's damping, at a node of "
+                     "this zone)",
+                     dt, state_.time_step_floor),
+         zone);
   }
   state_.time_step_next = dt;
   step_cut_by_damping_ = true;

@@ -44,6 +44,39 @@ TEST_CASE("Tensor viscosity: Noh spherical on an RZ equal-angle polar mesh", "[n
   CHECK(run.simulation.time() >= 0.6 * (1.0 - 1e-12));
 }
 
+// A run whose damping bound falls below the time-step floor stops with the body, a zone at the node
+// that sets the bound, and the time (docs/theory.md §2, "The damping bound"). On the polar mesh the
+// tensor viscosity alone sets its shortest steps at the nodes next to the centre (docs/verification.md
+// F7: the second ring's nodes pressed onto the axis), about 1e-7 s by t = 0.016, while the CFL step
+// there stays longer than a floor of 1e-6 s until then.
+TEST_CASE("Tensor viscosity: a damping bound below the time-step floor names a zone at the damped node",
+          "[noh][axisymmetric][tensor]") {
+  scenario::Scenario scenario = load_example("noh_spherical.json");
+  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
+  scenario.setup.controls.time_step_floor = 1e-6;
+  scenario.setup.controls.end_time = 0.05;
+  Simulation simulation(scenario.setup);
+  std::string message;
+  long zone = -1;
+  try {
+    while (!simulation.finished()) simulation.step();
+  } catch (const NumericalFailure& failure) {
+    message = failure.what();
+    zone = failure.zone();
+    CHECK(failure.body() == "gas");
+  }
+  INFO(message);
+  REQUIRE(zone >= 0);
+  CHECK(message.find("the tensor viscosity's damping, at a node of this zone") != std::string::npos);
+  // The named zone is one of the centre's: a corner within 0.03 (three initial zones) of the origin.
+  const Mesh& mesh = simulation.mesh();
+  double nearest = 1.0;
+  for (const Index node : mesh.zones.corners[static_cast<std::size_t>(zone)]) {
+    nearest = std::min(nearest, std::hypot(mesh.nodes.x[node], mesh.nodes.y[node]));
+  }
+  CHECK(nearest < 0.03);
+}
+
 // With the gas rezoned where its zones distort (docs/theory.md §2 step 5; `rezone` per body, opt-in),
 // the tensor viscosity's Noh rectangle keeps its mesh from tangling: the same criteria. The finer
 // meshes (100 x 100 and 200 x 200; the tensor viscosity alone completes them too since its damping

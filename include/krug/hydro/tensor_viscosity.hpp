@@ -39,10 +39,11 @@ namespace detail {
 // The time step sees the signal speed 2 (1 - psi_c) c_q s du_c of the strongest compressing corner, and
 // the damping at the nodes: the side forces are F = -C u per velocity component, C = E^T A E with E the
 // edges' differences and A (symmetric) from the corners' w_c mu_c and cosines over the edges' lengths.
-// Where `damping_rows` is given, each zone writes there, for each of its corners' nodes p, the row sum
-// sum_q |C_pq| / sqrt(m_q) over its nodes q that move (m_q = M_q / s_q in the area-weighted RZ form); summed at a node and divided by sqrt(m_p)
-// (damping_time_step, zone_forces.hpp) they give the Gershgorin bound on the largest eigenvalue of
-// M^-1/2 C M^-1/2 (that of M^-1 C), and so the step over which the damping alone stays stable.
+// Where `damping.rows` is given, each zone writes there, for each of its corners' nodes p, the row sum
+// sum_q |C_pq| / sqrt(m_q) over its nodes q that move (m_q = M_q / s_q in the area-weighted RZ form);
+// summed at a node and divided by sqrt(m_p) (damping_bound, zone_forces.hpp) they give the Gershgorin
+// bound on the largest eigenvalue of M^-1/2 C M^-1/2 (that of M^-1 C), and so the step over which the
+// damping alone stays stable.
 // L_c reaches twice the shorter edge: across a thin zone (the polar mesh's slivers along the axis, its
 // centre triangles) this damping outruns the CFL step, and without a bound it oscillated with a growing
 // amplitude.
@@ -52,7 +53,7 @@ template <GeometryKind G>
                                                           const ZoneForceParams& params, const ForceSettings settings,
                                                           AreaWeightedArrays area_weighted_arrays,
                                                           SharedEdgeLimiters shared_limiters, double& viscous_power,
-                                                          double* damping_rows) {
+                                                          DampingRows damping) {
   constexpr bool axisymmetric = G == GeometryKind::axisymmetric;
   constexpr int N = zone_batch;
   const bool area_weighted = axisymmetric && settings.area_weighted;
@@ -241,9 +242,13 @@ template <GeometryKind G>
       pushed[k][i] = on ? 1 : 0;
     }
   }
-  if (damping_rows != nullptr) {
+  if (damping.rows != nullptr) {
     for (int i = 0; i < count; ++i) {
-      double* rows = &damping_rows[4 * static_cast<std::size_t>(first + i)];
+      double* rows = &damping.rows[4 * static_cast<std::size_t>(first + i)];
+      if (!any[i]) {
+        for (int k = 0; k < 4; ++k) rows[k] = 0.0;
+        continue;
+      }
       // a[k][j]: the side force of edge k per velocity difference of edge j (j = k - 1, k, k + 1).
       double a[4][4] = {};
       for (int k = 0; k < 4; ++k) {
@@ -254,7 +259,7 @@ template <GeometryKind G>
         if (length[km][i] > 0.0) a[k][km] = cosine[k][i] * weight[k][i] / (lk * length[km][i]);
         if (length[k1][i] > 0.0) a[k][k1] = cosine[k1][i] * weight[k1][i] / (lk * length[k1][i]);
       }
-      // C = E^T A E, E[k] = (node k1) - (node k).
+      // C = E^T A E, E[k] = (node k + 1) - (node k).
       double c[4][4] = {};
       for (int k = 0; k < 4; ++k) {
         for (int j = 0; j < 4; ++j) {
@@ -264,22 +269,15 @@ template <GeometryKind G>
           }
         }
       }
-      // Rows of M^-1/2 C M^-1/2 times sqrt(m_q), over the nodes that move (a node held in both components
-      // drops out of the damped system).
+      // Rows of M^-1/2 C M^-1/2 times sqrt(m_p), over the nodes that move (scale 0: a node held in both
+      // components drops out of the damped system).
       const ZoneCorners& n = zones.corners[first + i];
-      // The area-weighted form moves a node by s_p times its area-weighted forces: its mass M_p / s_p.
-      double scale[4];
-      for (int j = 0; j < 4; ++j) {
-        const Index node = n[j];
-        const double s = area_weighted ? area_weighted_arrays.scale[node] : 1.0;
-        const bool held = (mesh.nodes.inv_mass_x[node] == 0.0 && mesh.nodes.inv_mass_y[node] == 0.0) || !(s > 0.0);
-        const double root = area_weighted ? std::sqrt(s / mesh.nodes.mass[node]) : 1.0 / std::sqrt(mesh.nodes.mass[node]);
-        scale[j] = held ? 0.0 : root;
-      }
-      for (int q = 0; q < 4; ++q) {
+      const double scale[4] = {damping.node_scale[n[0]], damping.node_scale[n[1]], damping.node_scale[n[2]],
+                               damping.node_scale[n[3]]};
+      for (int p = 0; p < 4; ++p) {
         double row = 0.0;
-        for (int j = 0; j < 4; ++j) row += std::abs(c[q][j]) * scale[j];
-        rows[q] = any[i] ? row : 0.0;
+        for (int q = 0; q < 4; ++q) row += std::abs(c[p][q]) * scale[q];
+        rows[p] = row;
       }
     }
   }

@@ -49,6 +49,14 @@ struct AreaWeightedArrays {
                                       // forces into the zone's own energy increment
 };
 
+// The tensor viscosity's damping at the nodes (batch_tensor_viscosity; damping_bound in zone_forces.hpp).
+struct DampingRows {
+  const double* node_scale = nullptr;  // per node: 1 / sqrt(m_p), 0 for a node held in both components
+                                       // (area-weighted RZ form: m_p = M_p / s_p, 0 where s_p <= 0)
+  double* rows = nullptr;              // 4 per zone, written: for each corner's node p, sum_q |C_pq| / sqrt(m_q)
+                                       // over the zone's nodes q that move
+};
+
 namespace detail {
 
 // The axisymmetric control-volume stress force on a corner, f_p = -[(V/A)(sigma_2D - sigma_tt I) b_p + sigma_tt c_p]

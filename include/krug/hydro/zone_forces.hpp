@@ -135,13 +135,13 @@ template <GeometryKind G>
 // receives what turns their work into the zone's own (control-volume) stress work plus its booked
 // viscous and hourglass work. Reads the mesh, hydro.pressure and sound_speed, `strength` and
 // fracture.damaged; writes hydro.corner_force and viscous_speed and `hourglass`, and with the tensor
-// viscosity, where `damping_rows` is given, its damping's row sums (4 per zone, batch_tensor_viscosity).
+// viscosity, where `damping.rows` is given, its damping's row sums (4 per zone, batch_tensor_viscosity).
 template <GeometryKind G, ViscosityModel Visc>
 ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, const StrengthZoneFields& strength,
                                       HourglassZoneFields& hourglass, const FractureZoneFields& fracture,
                                       Index zone_begin, Index zone_end, const ZoneForceParams& params,
                                       AreaWeightedArrays area_weighted_arrays = {},
-                                      SharedEdgeLimiters shared_limiters = {}, double* damping_rows = nullptr) {
+                                      SharedEdgeLimiters shared_limiters = {}, DampingRows damping = {}) {
   detail::ForceSettings settings;
   settings.area_weighted = G == GeometryKind::axisymmetric && params.axisymmetric_form == AxisymmetricForm::area_weighted;
   // k_s mu, or E'/3 in the physical form: without shear stiffness (a gas, or k_s = 0 in the coefficient
@@ -191,7 +191,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
     }
     if constexpr (Visc == ViscosityModel::tensor) {
       detail::batch_tensor_viscosity<G>(batch, count, first, mesh, hydro, zone_begin, params, settings,
-                                        area_weighted_arrays, shared_limiters, power.viscous, damping_rows);
+                                        area_weighted_arrays, shared_limiters, power.viscous, damping);
       // At shocks only: after the tensor viscosity, which marks them (batch.shock).
       if (corner_pressures && settings.subzonal_at_shocks) {
         detail::batch_subzonal_pressure<G>(batch, count, first, zones, hydro, settings);
@@ -224,27 +224,58 @@ inline void sum_corner_forces(NodeFields& nodes, const HydroZoneFields& hydro, c
   }
 }
 
-// The largest step over which the tensor viscosity's damping alone stays stable at the nodes in
-// [node_begin, node_end): 2 min sqrt(m_p) / R_p over the nodes with a free component, R_p the sum of the
-// damping rows (batch_tensor_viscosity) of the node's corners, in the node's corner order. R_p / sqrt(m_p)
-// is the radius of the node's Gershgorin disc of M^-1/2 C M^-1/2 (C symmetric, so its eigenvalues are
-// those of M^-1 C), and forward Euler on M du/dt = -C u is stable while dt times the largest eigenvalue
-// stays within 2. +infinity where no node is damped. `mass_scale`: the area-weighted RZ form's s_p (its
-// nodes move as if of mass M_p / s_p), else null.
-inline double damping_time_step(const NodeFields& nodes, const double* damping_rows, const NodeCorners& corners,
-                                Index node_begin, Index node_end, const double* mass_scale = nullptr) {
-  double step = std::numeric_limits<double>::infinity();
+// The scale of each node's damping rows (DampingRows::node_scale) for the nodes in [node_begin, node_end):
+// 1 / sqrt(m_p), 0 for a node held in both components; `mass_scale`: the area-weighted RZ form's s_p (its
+// nodes move as if of mass M_p / s_p, so sqrt(s_p / M_p); 0 where s_p <= 0), else null.
+inline void damping_node_scale(const NodeFields& nodes, Index node_begin, Index node_end, double* node_scale,
+                               const double* mass_scale = nullptr) {
   for (Index node = node_begin; node < node_end; ++node) {
-    if (nodes.inv_mass_x[node] == 0.0 && nodes.inv_mass_y[node] == 0.0) continue;
+    const bool held = nodes.inv_mass_x[node] == 0.0 && nodes.inv_mass_y[node] == 0.0;
     const double s = mass_scale ? mass_scale[node] : 1.0;
-    if (!(s > 0.0)) continue;
+    const double root = mass_scale ? std::sqrt(s / nodes.mass[node]) : 1.0 / std::sqrt(nodes.mass[node]);
+    node_scale[node] = held || !(s > 0.0) ? 0.0 : root;
+  }
+}
+
+// The tensor viscosity's damping at the nodes of a range: the largest step over which it alone stays
+// stable there, and the node that sets it (-1 where no node is damped).
+struct DampingBound {
+  double step = std::numeric_limits<double>::infinity();
+  Index node = -1;
+
+  // The bound of two ranges, this one's nodes first.
+  void merge(const DampingBound& other) {
+    if (other.step < step) {
+      step = other.step;
+      node = other.node;
+    }
+  }
+};
+
+// The damping bound over the nodes in [node_begin, node_end) with a free component: 2 min sqrt(m_p) / R_p,
+// R_p the sum of the damping rows (batch_tensor_viscosity) of the node's corners, in the node's corner
+// order. R_p / sqrt(m_p) is the radius of the node's Gershgorin disc of M^-1/2 C M^-1/2 (C symmetric, so
+// its eigenvalues are those of M^-1 C), and forward Euler on M du/dt = -C u is stable while dt times the
+// largest eigenvalue stays within 2. `node_scale` as damping_node_scale wrote it; `mass_scale` as given there.
+inline DampingBound damping_bound(const NodeFields& nodes, const double* damping_rows, const double* node_scale,
+                                  const NodeCorners& corners, Index node_begin, Index node_end,
+                                  const double* mass_scale = nullptr) {
+  DampingBound bound;
+  for (Index node = node_begin; node < node_end; ++node) {
+    if (!(node_scale[node] > 0.0)) continue;
     double row = 0.0;
     for (Index k = corners.offset[node]; k < corners.offset[node + 1]; ++k) {
       row += damping_rows[static_cast<std::size_t>(corners.slot[k])];
     }
-    if (row > 0.0) step = std::min(step, 2.0 * std::sqrt(nodes.mass[node] / s) / row);
+    if (!(row > 0.0)) continue;
+    const double s = mass_scale ? mass_scale[node] : 1.0;
+    const double step = 2.0 * std::sqrt(nodes.mass[node] / s) / row;
+    if (step < bound.step) {
+      bound.step = step;
+      bound.node = node;
+    }
   }
-  return step;
+  return bound;
 }
 
 }  // namespace krug

@@ -39,11 +39,11 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
 // t^{n-1/2} and zones, and the zones' pressure, sound speed, stress and damage; writes their corner
 // forces and viscous speeds (`state.hydro`) and hourglass state (`state.hourglass`), the limiters of
 // `limiters`, the work corrections of `area_weighted` and, with the tensor viscosity, the damping rows
-// (4 per zone, where `damping_rows` is not null). Returns the artificial powers, the blocks' added in
+// (4 per zone, where `damping.rows` is not null). Returns the artificial powers, the blocks' added in
 // block order.
 ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Body& body, GeometryKind geometry,
                                    const ZoneForceParams& params, int threads, AreaWeightedArrays area_weighted,
-                                   SharedEdgeLimiters limiters, double* damping_rows);
+                                   SharedEdgeLimiters limiters, DampingRows damping);
 
 // Step 5 on the body's zones (update_zones with the material's EOS and strength model): reads the
 // positions at t^{n+1}, the velocities, the corner forces and `work_correction` (8 per zone, the

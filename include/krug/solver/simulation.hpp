@@ -185,6 +185,7 @@ class Simulation {
   std::vector<double> area_weighted_work_;   // 8 per zone: work correction of the area-weighted RZ form (empty otherwise)
   std::vector<double> edge_limiters_;        // psi per zone edge, written and read by compute_forces
   std::vector<double> damping_rows_;         // 4 per zone: the tensor viscosity's damping rows (that model only)
+  std::vector<double> damping_scale_;        // per node: the rows' 1 / sqrt(m_p), renewed every step (that model only)
   std::vector<ArtificialPower> artificial_power_;  // per body, of step 1 (booked once dt^n is final)
   RezoneScratch rezone_scratch_;                   // the rezone's work arrays (bodies that ask for it)
 
