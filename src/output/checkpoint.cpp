@@ -216,6 +216,7 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   w.value(steps.smallest_body);
   w.value(steps.smallest_zone);
   w.value(steps.smallest_limit);
+  w.value(steps.last_counted);
   w.value(progress.contact.active_cycles);
   w.value(progress.contact.unconverged_cycles);
   w.value(progress.contact.solved_together_cycles);
@@ -323,6 +324,7 @@ Checkpoint parse_checkpoint(const std::string& bytes, const std::string& name) {
   steps.smallest_body = r.value<std::int32_t>();
   steps.smallest_zone = r.value<std::int32_t>();
   steps.smallest_limit = r.value<std::int32_t>();
+  steps.last_counted = r.value<std::int32_t>();
   p.contact.active_cycles = r.value<std::int64_t>();
   p.contact.unconverged_cycles = r.value<std::int64_t>();
   p.contact.solved_together_cycles = r.value<std::int64_t>();

@@ -469,19 +469,26 @@ void RunRecorder::count_time_step(const Simulation& simulation) {
   if (r.zone_cycles.size() != simulation.bodies().size()) r.zone_cycles.assign(simulation.bodies().size(), 0);
   const TimeStepLimit limit = simulation.time_step_limit();
   const Index body = limit == TimeStepLimit::zone ? simulation.body_of_zone(simulation.controlling_zone()) : -1;
+  // Each cycle counts what chose the next step. The step just taken, if the damping bound cut it after
+  // its forces, was set by the damping instead of the choice the last cycle counted for it.
+  const auto counter = [&r](std::int32_t counted) -> std::int64_t* {
+    if (counted >= 0) return &r.zone_cycles[static_cast<std::size_t>(counted)];
+    if (counted == -2) return &r.growth_cycles;
+    if (counted == -3) return &r.particle_cycles;
+    if (counted == -4) return &r.other_cycles;
+    return nullptr;
+  };
   if (simulation.step_cut_by_damping()) {
-    ++r.damping_cycles;  // the step just taken, cut after its forces: counted in place of its choice
-  } else {
-    switch (limit) {
-      case TimeStepLimit::zone:
-        if (body >= 0) ++r.zone_cycles[static_cast<std::size_t>(body)];
-        else ++r.other_cycles;
-        break;
-      case TimeStepLimit::growth: ++r.growth_cycles; break;
-      case TimeStepLimit::particle_travel: ++r.particle_cycles; break;
-      default: ++r.other_cycles; break;
-    }
+    if (std::int64_t* chosen = counter(r.last_counted)) --*chosen;
+    ++r.damping_cycles;
   }
+  switch (limit) {
+    case TimeStepLimit::zone: r.last_counted = body >= 0 ? static_cast<std::int32_t>(body) : -4; break;
+    case TimeStepLimit::growth: r.last_counted = -2; break;
+    case TimeStepLimit::particle_travel: r.last_counted = -3; break;
+    default: r.last_counted = -4; break;
+  }
+  ++*counter(r.last_counted);
   const double dt = simulation.next_time_step();
   if (limit != TimeStepLimit::end_time && !simulation.finished() && (r.smallest == 0.0 || dt < r.smallest)) {
     r.smallest = dt;

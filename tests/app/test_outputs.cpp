@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -338,5 +339,50 @@ TEST_CASE("the history column registry: unique names, and history.csv has a cell
       CHECK(static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1 == names.size());
     }
     CHECK(rows >= 2);
+  }
+}
+
+TEST_CASE("summary.json: cycles_set_by counts each step the damping bound cut as the damping's", "[app][outputs][tensor]") {
+  // The spherical Noh on the polar verification mesh with the tensor viscosity and subzonal pressures at
+  // shocks (docs/verification.md F7), whose damping bound cuts steps near the centre from the first
+  // cycles. Counted here independently, step by step: a step the bound cut after its forces was set by
+  // the damping, any other by the limit that chose it at the end of the cycle before. The summary counts
+  // each cycle's choice of the next step, so it leaves out the first step's choice and has the choice
+  // after the last cycle instead; every other count must agree.
+  krug::scenario::Scenario scenario =
+      krug::scenario::load_scenario(fs::path(KRUG_EXAMPLES_DIR) / "verification" / "noh_spherical.json");
+  scenario.setup.controls.viscosity.model = krug::ViscosityModel::tensor;
+  scenario.setup.controls.hourglass.subzonal_pressure = 2.0;
+  scenario.setup.controls.hourglass.subzonal_at_shocks = true;
+  scenario.setup.controls.end_time = 0.03;
+  const fs::path dir = krug::test::scratch("summary_damping_cycles");
+  const auto name = [](krug::TimeStepLimit limit) {
+    switch (limit) {
+      case krug::TimeStepLimit::zone: return std::string("gas");
+      case krug::TimeStepLimit::growth: return std::string("growth_limit");
+      case krug::TimeStepLimit::particle_travel: return std::string("particle_travel");
+      default: return std::string("other");
+    }
+  };
+  std::map<std::string, long> taken;
+  std::string chosen, first_choice;
+  krug::output::RunOptions options;
+  options.output_directory = dir;
+  options.on_start = [&](const krug::Simulation& s) { chosen = first_choice = name(s.time_step_limit()); };
+  options.on_cycle = [&](const krug::Simulation& s, double) {
+    ++taken[s.step_cut_by_damping() ? std::string("viscous_damping") : chosen];
+    chosen = name(s.time_step_limit());
+    return true;
+  };
+  REQUIRE(krug::output::run_scenario(scenario, options).status == krug::run::RunStatus::completed);
+  const auto summary = krug::test::read_json(dir / "summary.json");
+  long cycles = 0;
+  for (const auto& [key, count] : taken) cycles += count;
+  REQUIRE(summary["cycles"].get<long>() == cycles);
+  REQUIRE(taken["viscous_damping"] > 0);
+  for (const std::string key : {"gas", "growth_limit", "particle_travel", "viscous_damping", "other"}) {
+    INFO(key);
+    const long expected = taken[key] - (key == first_choice ? 1 : 0) + (key == chosen ? 1 : 0);
+    CHECK(summary["time_step"]["cycles_set_by"][key].get<long>() == expected);
   }
 }

@@ -23,7 +23,7 @@ namespace krug::output {
 
 using run::RunProgress;
 
-inline constexpr std::uint32_t checkpoint_version = 9;
+inline constexpr std::uint32_t checkpoint_version = 10;
 
 struct Checkpoint {
   SimulationState state;

@@ -38,6 +38,9 @@ struct TimeStepRecord {
   double smallest_time = 0.0;             // s, when it was taken
   std::int32_t smallest_body = -1, smallest_zone = -1;  // zone within the body; -1 when not a zone's
   std::int32_t smallest_limit = 0;        // TimeStepLimit
+  // The count the last cycle added for the step it chose (body b's zones: b; growth -2, particles -3,
+  // other -4; -1 none yet): a step that the damping bound then cut is moved from it to damping_cycles.
+  std::int32_t last_counted = -1;
 };
 
 // The contact solve, cycle by cycle: the cycles with a pushing contact, those whose Gauss-Seidel
