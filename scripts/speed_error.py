@@ -4,11 +4,11 @@ and prints a Markdown table (problem, zones, cycles, CPU seconds, error, ns per 
 for docs/performance.md, and with --plot FILE a log-log plot of error against seconds (matplotlib).
 
     scripts/speed_error.py [--tests build/tests/krug_convergence_tests] [--scale 1] [--plot speed_error.png]
-                           [--cfl C] [--growth G]
+                           [--cfl C] [--growth G] [--viscosity edge|tensor|scalar|auto]
 
 --cfl and --growth override every run's CFL numbers (controls.cfl and controls.cfl_fluid) and
 controls.time_step_growth (to compare the
-time-step control against accuracy side by side).
+time-step control against accuracy side by side); --viscosity sets every run's controls.viscosity.model.
 
 The error is the L1 density error against the exact profile for the gas problems and, for the Taylor
 bar, the mean relative error of its length and impact-face radius against their converged values.
@@ -29,12 +29,15 @@ def main():
     parser.add_argument("--plot")
     parser.add_argument("--cfl")
     parser.add_argument("--growth")
+    parser.add_argument("--viscosity", choices=["edge", "tensor", "scalar", "auto"])
     args = parser.parse_args()
     env = dict(os.environ, KRUG_VERIFICATION_REPORT="1", KRUG_CONVERGENCE_SCALE=args.scale)
     if args.cfl:
         env["KRUG_STUDY_CFL"] = args.cfl
     if args.growth:
         env["KRUG_STUDY_GROWTH"] = args.growth
+    if args.viscosity:
+        env["KRUG_STUDY_VISCOSITY"] = args.viscosity
     run = subprocess.run([args.tests, "[speed_error]"], env=env, capture_output=True, text=True)
     rows = []
     for line in run.stdout.splitlines():

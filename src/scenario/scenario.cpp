@@ -67,10 +67,11 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
   {
     JsonObject viscosity = spec->object_or_empty("viscosity");
     JsonObject* v = &viscosity;
-    const std::string model = v->choice("model", {"edge", "scalar", "tensor", "off"}, "edge");
+    const std::string model = v->choice("model", {"edge", "scalar", "tensor", "off", "auto"}, "edge");
     c.viscosity.model = model == "edge"     ? ViscosityModel::edge
                         : model == "scalar" ? ViscosityModel::scalar
                         : model == "tensor" ? ViscosityModel::tensor
+                        : model == "auto"   ? ViscosityModel::automatic
                                             : ViscosityModel::off;
     c.viscosity.quadratic = v->number("quadratic", c.viscosity.quadratic, Range::non_negative());
     c.viscosity.linear = v->number("linear", c.viscosity.linear, Range::non_negative());
@@ -98,11 +99,15 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));
     c.hourglass.subzonal_at_shocks = h->flag("subzonal_at_shocks", c.hourglass.subzonal_at_shocks);
-    if (c.hourglass.subzonal_at_shocks && c.viscosity.model != ViscosityModel::tensor) {
-      h->fail("subzonal_at_shocks", "false unless viscosity.model is \"tensor\" (whose switch marks the shocks)");
+    // The subzonal pressures act in bodies without strength, where "auto" gives the tensor viscosity.
+    if (c.hourglass.subzonal_at_shocks && c.viscosity.model != ViscosityModel::tensor &&
+        c.viscosity.model != ViscosityModel::automatic) {
+      h->fail("subzonal_at_shocks",
+              "false unless viscosity.model is \"tensor\" or \"auto\" (the tensor viscosity's switch marks the shocks)");
     }
-    c.hourglass.collapse_pressure =
-        h->number("collapse_pressure", c.hourglass.collapse_pressure, Range::between(0.0, 10.0));
+    if (h->has("collapse_pressure")) {
+      c.hourglass.collapse_pressure = h->number("collapse_pressure", 0.0, Range::between(0.0, 10.0));
+    }
     c.hourglass.collapse_threshold =
         h->number("collapse_threshold", c.hourglass.collapse_threshold, Range::between(1.0, 10.0));
     h->finish();

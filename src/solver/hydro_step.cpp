@@ -10,6 +10,14 @@ double cfl_number(const Material& material, const Controls& controls) {
   return material.shear_modulus() == 0.0 ? controls.cfl_fluid : controls.cfl;
 }
 
+bool some_body_takes(ViscosityModel model, const std::vector<Body>& bodies, const std::vector<Material>& materials,
+                     const Controls& controls) {
+  return std::any_of(bodies.begin(), bodies.end(), [&](const Body& body) {
+    const Material& material = materials[static_cast<std::size_t>(body.material)];
+    return body_viscosity(controls.viscosity, controls.hourglass, material.shear_modulus() != 0.0).model == model;
+  });
+}
+
 ZoneForceParams zone_force_params(const Material& material, const Controls& controls, double previous_time_step) {
   ZoneForceParams params;
   params.shock_slope = material.shock_slope();
@@ -18,6 +26,9 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
   params.bending_modulus = material.bending_modulus();
   params.viscosity = controls.viscosity;
   params.hourglass = controls.hourglass;
+  const BodyViscosity own = body_viscosity(controls.viscosity, controls.hourglass, material.shear_modulus() != 0.0);
+  params.viscosity.model = own.model;
+  params.hourglass.collapse_pressure = own.collapse_pressure;
   params.axisymmetric_form = controls.axisymmetric_form;
   params.previous_time_step = previous_time_step;
   return params;
@@ -38,7 +49,8 @@ ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Bod
       case ViscosityModel::edge: return run.template operator()<G, ViscosityModel::edge>();
       case ViscosityModel::scalar: return run.template operator()<G, ViscosityModel::scalar>();
       case ViscosityModel::tensor: return run.template operator()<G, ViscosityModel::tensor>();
-      case ViscosityModel::off: break;
+      case ViscosityModel::off:
+      case ViscosityModel::automatic: break;  // resolved by zone_force_params
     }
     return run.template operator()<G, ViscosityModel::off>();
   };

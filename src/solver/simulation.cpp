@@ -65,7 +65,7 @@ void Simulation::initialise() {
   build_edge_continuations(state_.mesh);
   node_corners_ = node_corners(state_.mesh);
   share_edge_limiters();
-  if (controls_.viscosity.model == ViscosityModel::tensor) {
+  if (some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_)) {
     damping_rows_.assign(4 * static_cast<std::size_t>(zones.size()), 0.0);  // present: the step reads its bound
     damping_scale_.assign(nodes.size(), 0.0);
   }
@@ -151,8 +151,8 @@ void Simulation::restore(SimulationState s) {
 }
 
 void Simulation::share_edge_limiters() {
-  const bool edge_limiters =
-      controls_.viscosity.model == ViscosityModel::edge || controls_.viscosity.model == ViscosityModel::tensor;
+  const bool edge_limiters = some_body_takes(ViscosityModel::edge, bodies_, materials_, controls_) ||
+                             some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_);
   if (!edge_limiters || !controls_.viscosity.limiter) return;
   mirrored_edges_ = mirrored_edge_slots(state_.mesh);
   edge_limiters_.assign(mirrored_edges_.size(), 0.0);

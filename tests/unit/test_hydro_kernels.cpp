@@ -101,6 +101,7 @@ void compute_forces(OneZone& mesh, const ZoneForceParams& params) {
     case ViscosityModel::scalar: compute_forces_with<G, ViscosityModel::scalar>(mesh, params); break;
     case ViscosityModel::tensor: compute_forces_with<G, ViscosityModel::tensor>(mesh, params); break;
     case ViscosityModel::off: compute_forces_with<G, ViscosityModel::off>(mesh, params); break;
+    case ViscosityModel::automatic: FAIL("the kernels take a resolved model (zone_force_params)"); break;
   }
 }
 
@@ -568,5 +569,28 @@ TEST_CASE("hydro kernels: the corner-collapse pressure acts past its threshold o
     OneZone mesh = build({0.45, 0.45});
     compute_forces<GeometryKind::planar>(mesh, stress_only());
     for (std::size_t p = 0; p < 4; ++p) CHECK((force(mesh, p).x == 0.0 && force(mesh, p).y == 0.0));
+  }
+}
+
+// ViscosityModel::automatic resolves by the body's strength (parameters.hpp, body_viscosity); a named
+// model applies to every body, and a collapse pressure given overrides the automatic one.
+TEST_CASE("hydro parameters: each body's viscosity model and corner-collapse pressure", "[hydro][viscosity]") {
+  ViscosityParams viscosity;
+  HourglassParams hourglass;
+  viscosity.model = ViscosityModel::automatic;
+  CHECK(body_viscosity(viscosity, hourglass, true).model == ViscosityModel::edge);
+  CHECK(body_viscosity(viscosity, hourglass, true).collapse_pressure == 0.0);
+  CHECK(body_viscosity(viscosity, hourglass, false).model == ViscosityModel::tensor);
+  CHECK(body_viscosity(viscosity, hourglass, false).collapse_pressure == automatic_collapse_pressure);
+  hourglass.collapse_pressure = 0.25;
+  CHECK(body_viscosity(viscosity, hourglass, false).collapse_pressure == 0.25);
+  CHECK(body_viscosity(viscosity, hourglass, true).collapse_pressure == 0.25);
+  hourglass.collapse_pressure.reset();
+  for (const ViscosityModel named : {ViscosityModel::edge, ViscosityModel::scalar, ViscosityModel::tensor, ViscosityModel::off}) {
+    viscosity.model = named;
+    for (const bool strength : {true, false}) {
+      CHECK(body_viscosity(viscosity, hourglass, strength).model == named);
+      CHECK(body_viscosity(viscosity, hourglass, strength).collapse_pressure == 0.0);
+    }
   }
 }

@@ -36,8 +36,18 @@ double l1_error(const Simulation& simulation, const Body& body, const ExactProfi
   return sum / shape.zones_j;
 }
 
-// Time-step control under study (scripts/speed_error.py --cfl, --growth); default: the scenario's.
+// Time-step control and viscosity model under study (scripts/speed_error.py --cfl, --growth,
+// --viscosity); default: the scenario's.
 void apply_study_controls(scenario::Scenario& scenario) {
+  if (const char* model = std::getenv("KRUG_STUDY_VISCOSITY"); model != nullptr && *model != '\0') {
+    const std::string m = model;
+    ViscosityParams& v = scenario.setup.controls.viscosity;
+    if (m == "edge") v.model = ViscosityModel::edge;
+    else if (m == "tensor") v.model = ViscosityModel::tensor;
+    else if (m == "scalar") v.model = ViscosityModel::scalar;
+    else if (m == "auto") v.model = ViscosityModel::automatic;
+    else FAIL("KRUG_STUDY_VISCOSITY: edge, tensor, scalar or auto, not " << m);
+  }
   if (const char* cfl = std::getenv("KRUG_STUDY_CFL"); cfl != nullptr && *cfl != '\0') {
     scenario.setup.controls.cfl = scenario.setup.controls.cfl_fluid = std::stod(cfl);
   }

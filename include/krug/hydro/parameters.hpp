@@ -1,7 +1,9 @@
 #pragma once
 // Numerical parameters of the hydrodynamic step (artificial viscosity, hourglass control, the
 // axisymmetric form of the corner forces), with defaults. The kernels in this module read them;
-// the solver's Controls carry one copy per run.
+// the solver's Controls carry one copy per run, and each body's copy (body_viscosity) resolves the
+// choices that depend on whether the body has strength.
+#include <optional>
 
 namespace krug {
 
@@ -9,7 +11,11 @@ enum class ViscosityModel {
   edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
   scalar,  // Wilkins' zone-centred q added to the pressure
   tensor,  // Campbell & Shashkov (2001) corner (tensor) viscosity with a limiter
-  off
+  off,
+  // By body: the edge viscosity in bodies with strength; in bodies without strength the tensor
+  // viscosity with the corner-collapse pressure (HourglassParams::collapse_pressure, 1 unless given),
+  // which keeps the converging gas flows of docs/verification.md F7 from folding at the axis.
+  automatic
 };
 
 struct ViscosityParams {
@@ -53,10 +59,28 @@ struct HourglassParams {
   // the median mesh compressed beyond `collapse_threshold` times its zone's density pushes with
   // dp = collapse_pressure x c^2 (rho_corner - collapse_threshold x rho_zone); below that it does nothing,
   // so smooth flow, affine or not, never feels it. What it stops is a corner folding into its zone (a
-  // zone turning into a dart), which the one-point hourglass control does not see. 0: off.
-  double collapse_pressure = 0.0;
+  // zone turning into a dart), which the one-point hourglass control does not see. 0: off. Not given:
+  // 0, except in the bodies that ViscosityModel::automatic gives the tensor viscosity (body_viscosity).
+  std::optional<double> collapse_pressure;
   double collapse_threshold = 1.5;
 };
+
+// What ViscosityModel::automatic gives a body without strength as its corner-collapse pressure.
+inline constexpr double automatic_collapse_pressure = 1.0;
+
+// The viscosity model and corner-collapse pressure one body takes: `viscosity.model`, and
+// `hourglass.collapse_pressure` (0 if not given), unless the model is `automatic` (see there).
+struct BodyViscosity {
+  ViscosityModel model = ViscosityModel::edge;
+  double collapse_pressure = 0.0;
+};
+
+inline BodyViscosity body_viscosity(const ViscosityParams& viscosity, const HourglassParams& hourglass,
+                                    bool has_strength) {
+  if (viscosity.model != ViscosityModel::automatic) return {viscosity.model, hourglass.collapse_pressure.value_or(0.0)};
+  if (has_strength) return {ViscosityModel::edge, hourglass.collapse_pressure.value_or(0.0)};
+  return {ViscosityModel::tensor, hourglass.collapse_pressure.value_or(automatic_collapse_pressure)};
+}
 
 enum class AxisymmetricForm {
   control_volume,  // compatible corner forces from dV/dx_p: exact momentum and energy (default)

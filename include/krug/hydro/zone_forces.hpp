@@ -161,7 +161,7 @@ ArtificialPower compute_corner_forces(const Mesh& mesh, HydroZoneFields& hydro, 
   // the subzonal pressures act everywhere rather than nowhere.
   settings.subzonal_at_shocks = Visc == ViscosityModel::tensor && params.hourglass.subzonal_at_shocks;
   // The corner-collapse pressure: every body, compatible forms only.
-  settings.collapse = !settings.area_weighted ? params.hourglass.collapse_pressure : 0.0;
+  settings.collapse = !settings.area_weighted ? params.hourglass.collapse_pressure.value_or(0.0) : 0.0;
   settings.collapse_threshold = params.hourglass.collapse_threshold;
   const bool corner_pressures = settings.subzonal > 0.0 || settings.collapse > 0.0;
   const ZoneFields& zones = mesh.zones;

@@ -32,7 +32,12 @@ void evaluate_eos(const Eos& eos, double mu, const ZoneFields& zones, HydroZoneF
 // The CFL number of a body of this material: controls.cfl_fluid without strength, controls.cfl with it.
 double cfl_number(const Material& material, const Controls& controls);
 
-// The force kernel's parameters for a body of this material; `previous_time_step` is dt^{n-1/2}.
+// Whether some body of `bodies` takes this viscosity model (body_viscosity).
+bool some_body_takes(ViscosityModel model, const std::vector<Body>& bodies, const std::vector<Material>& materials,
+                     const Controls& controls);
+
+// The force kernel's parameters for a body of this material, its viscosity model and corner-collapse
+// pressure resolved (body_viscosity); `previous_time_step` is dt^{n-1/2}.
 ZoneForceParams zone_force_params(const Material& material, const Controls& controls, double previous_time_step);
 
 // Step 1 on the body's zones (compute_corner_forces): reads the mesh's positions, velocities at
