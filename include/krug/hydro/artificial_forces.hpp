@@ -95,6 +95,32 @@ template <GeometryKind G>
     live[i] = zones.active[z] != 0 ? 1.0 : 0.0;
     for (int p = 0; p < 4; ++p) subzone_mass[p][i] = zones.subzone_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)];
   }
+  // The collapse pressure alone acts only where a corner region is denser than theta times its zone:
+  // a batch without one adds nothing (the loop below would mask every region), and is left at once.
+  if (settings.subzonal == 0.0) {
+    if (!collapse) return;
+    std::int64_t beyond = 0;
+    for (int i = 0; i < count; ++i) {
+      const quad::Corners x = batch.corners(i);
+      const Vec2 middle = quad::centre(x);
+      const double collapse_density = settings.collapse_threshold * density[i];
+#pragma GCC unroll 4
+      for (int p = 0; p < 4; ++p) {
+        const Vec2 corner{x[p].x, x[p].y};
+        const quad::Corners region{corner, 0.5 * (corner + x[quad::next(p)]), Vec2{middle.x, middle.y},
+                                   0.5 * (x[quad::prev(p)] + corner)};
+        double volume = 0.0;
+        if constexpr (G == GeometryKind::axisymmetric) {
+          volume = quad::axisymmetric_volume(region);
+        } else {
+          volume = quad::area(region);
+        }
+        const std::int64_t dense = (live[i] != 0.0) & (volume > 0.0) & (subzone_mass[p][i] / volume > collapse_density);
+        beyond = beyond | dense;
+      }
+    }
+    if (beyond == 0) return;
+  }
   for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
     const double rho = density[i];
