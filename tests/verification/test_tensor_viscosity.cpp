@@ -137,6 +137,20 @@ TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh and Sedov sph
   rz_rectangle::check_sedov(sedov, 50, "Sedov, spherical (RZ rectangle 50 x 50, tensor q, subzonal 2 at shocks)", true);
 }
 
+// viscosity.model "auto" on F7's rectangles: the gas takes the tensor viscosity with the corner-collapse
+// pressure 1 (docs/verification.md F7), judged by the criteria of rz_rectangle_blasts.hpp.
+TEST_CASE("viscosity.model \"auto\": Noh and Sedov spherical on a rectangular RZ mesh",
+          "[noh][sedov][axisymmetric][tensor][collapse]") {
+  const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
+  REQUIRE(scalar_q_cycles > 0);
+  scenario::Scenario noh = load_example("noh_spherical_rectangle.json");
+  noh.setup.controls.viscosity.model = ViscosityModel::automatic;
+  rz_rectangle::check_noh(noh, 50, scalar_q_cycles, "Noh, spherical (RZ rectangle 50 x 50, viscosity auto)");
+  scenario::Scenario sedov = load_example("sedov_spherical_rectangle.json");
+  sedov.setup.controls.viscosity.model = ViscosityModel::automatic;
+  rz_rectangle::check_sedov(sedov, 50, "Sedov, spherical (RZ rectangle 50 x 50, viscosity auto)", true);
+}
+
 // viscosity.model "auto" resolves per body (body_viscosity): a body without strength takes the tensor
 // viscosity with the corner-collapse pressure 1, a body with strength the edge viscosity. Two bodies
 // that never meet, stepped at one fixed step well below either's stable step, move exactly as each does

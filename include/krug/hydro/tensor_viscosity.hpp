@@ -108,6 +108,27 @@ template <GeometryKind G>
     }
     any[i] = zone_any & live[i];
   }
+  // A batch without a compressing corner (gas at rest, or expanding) takes no viscosity: what the phases
+  // below would write for it, written at once.
+  std::int64_t batch_any = 0;
+  for (int i = 0; i < count; ++i) batch_any = batch_any | any[i];
+  if (batch_any == 0) {
+    for (int i = 0; i < count; ++i) {
+      const Index z = first + i;
+      batch.shock[i] = 0.0;
+      if (zones.active[z]) hydro.viscous_speed[z] = 0.0;
+      if (damping.rows != nullptr) {
+        for (int k = 0; k < 4; ++k) damping.rows[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k)] = 0.0;
+      }
+      if (params.viscosity.limiter && shared_limiters.value != nullptr) {
+        for (int k = 0; k < 4; ++k) {
+          shared_limiters.value[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(k)] =
+              std::numeric_limits<double>::quiet_NaN();
+        }
+      }
+    }
+    return;
+  }
   // Velocity gradient along each edge.
   double gx[4][N], gy[4][N], gradient2[4][N], psi[4][N];
   std::int64_t graded[4][N];
