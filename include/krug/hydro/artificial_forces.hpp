@@ -96,7 +96,9 @@ template <GeometryKind G>
     for (int p = 0; p < 4; ++p) subzone_mass[p][i] = zones.subzone_mass[4 * static_cast<std::size_t>(z) + static_cast<std::size_t>(p)];
   }
   // The collapse pressure alone acts only where a corner region is denser than theta times its zone:
-  // a batch without one adds nothing (the loop below would mask every region), and is left at once.
+  // a batch without one adds nothing (the loop below would mask every region) but +0 to each live
+  // zone's forces (which turns a -0 into +0), and that is all it does, so that a zone's bits do not
+  // depend on the other zones of its batch.
   if (settings.subzonal == 0.0) {
     if (!collapse) return;
     std::int64_t beyond = 0;
@@ -119,7 +121,15 @@ template <GeometryKind G>
         beyond = beyond | dense;
       }
     }
-    if (beyond == 0) return;
+    if (beyond == 0) {
+      for (int i = 0; i < count; ++i) {
+        for (int p = 0; p < 4; ++p) {
+          batch.fx[p][i] = live[i] != 0.0 ? batch.fx[p][i] + 0.0 : batch.fx[p][i];
+          batch.fy[p][i] = live[i] != 0.0 ? batch.fy[p][i] + 0.0 : batch.fy[p][i];
+        }
+      }
+      return;
+    }
   }
   for (int i = 0; i < count; ++i) {
     const quad::Corners x = batch.corners(i);
