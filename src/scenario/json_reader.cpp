@@ -244,6 +244,14 @@ double JsonObject::number(std::string_view key, double fallback, Range range) {
   return number(key, range);
 }
 
+std::optional<double> JsonObject::optional_number(std::string_view key, Range range) {
+  if (!has(key)) {
+    used_.emplace(key);
+    return std::nullopt;
+  }
+  return number(key, range);
+}
+
 long JsonObject::integer(std::string_view key, long min, long max) {
   const Json& v = member(key);
   const std::string expected = fmt::format("an integer in [{}, {}]", min, max);

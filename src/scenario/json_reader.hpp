@@ -94,6 +94,9 @@ class JsonObject {
 
   double number(std::string_view key, Range range = {});
   double number(std::string_view key, double fallback, Range range = {});
+  // A number that may be absent (a default that depends on other choices): accepted here either way,
+  // and only a given one reaches the resolved document.
+  std::optional<double> optional_number(std::string_view key, Range range = {});
   long integer(std::string_view key, long fallback, long min, long max);
   long integer(std::string_view key, long min, long max);
   bool flag(std::string_view key, bool fallback);

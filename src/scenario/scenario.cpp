@@ -105,9 +105,7 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
       h->fail("subzonal_at_shocks",
               "false unless viscosity.model is \"tensor\" or \"auto\" (the tensor viscosity's switch marks the shocks)");
     }
-    if (h->has("collapse_pressure")) {
-      c.hourglass.collapse_pressure = h->number("collapse_pressure", 0.0, Range::between(0.0, 10.0));
-    }
+    c.hourglass.collapse_pressure = h->optional_number("collapse_pressure", Range::between(0.0, 10.0));
     c.hourglass.collapse_threshold =
         h->number("collapse_threshold", c.hourglass.collapse_threshold, Range::between(1.0, 10.0));
     h->finish();
