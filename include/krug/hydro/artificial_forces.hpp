@@ -77,6 +77,23 @@ template <GeometryKind G>
 // dp_p = k_c c^2 (rho_p - theta rho) where that is positive, theta the threshold (1.5 by default), and
 // nothing elsewhere. A corner region whose density reaches theta times its zone's is a corner folding
 // into the zone; the one-point hourglass control sees only the zone's mean mode and lets it fold.
+// Corner p's region of the median mesh (quad::corner_region), built from its components: an aggregate
+// copy of x would not vectorise.
+[[gnu::always_inline]] inline quad::Corners corner_region_of(const quad::Corners& x, Vec2 middle, int p) {
+  const Vec2 corner{x[p].x, x[p].y};
+  return {corner, 0.5 * (corner + x[quad::next(p)]), Vec2{middle.x, middle.y}, 0.5 * (x[quad::prev(p)] + corner)};
+}
+
+// Its volume measure: area, or the integral of r dA in axisymmetric geometry.
+template <GeometryKind G>
+[[gnu::always_inline]] inline double corner_region_volume(const quad::Corners& region) {
+  if constexpr (G == GeometryKind::axisymmetric) {
+    return quad::axisymmetric_volume(region);
+  } else {
+    return quad::area(region);
+  }
+}
+
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
                                                          const HydroZoneFields& hydro, const ForceSettings settings) {
@@ -108,15 +125,7 @@ template <GeometryKind G>
       const double collapse_density = settings.collapse_threshold * density[i];
 #pragma GCC unroll 4
       for (int p = 0; p < 4; ++p) {
-        const Vec2 corner{x[p].x, x[p].y};
-        const quad::Corners region{corner, 0.5 * (corner + x[quad::next(p)]), Vec2{middle.x, middle.y},
-                                   0.5 * (x[quad::prev(p)] + corner)};
-        double volume = 0.0;
-        if constexpr (G == GeometryKind::axisymmetric) {
-          volume = quad::axisymmetric_volume(region);
-        } else {
-          volume = quad::area(region);
-        }
+        const double volume = corner_region_volume<G>(corner_region_of(x, middle, p));
         const std::int64_t dense = (live[i] != 0.0) & (volume > 0.0) & (subzone_mass[p][i] / volume > collapse_density);
         beyond = beyond | dense;
       }
@@ -145,17 +154,12 @@ template <GeometryKind G>
     std::array<Vec2, 4> force{};
 #pragma GCC unroll 4
     for (int p = 0; p < 4; ++p) {
-      // quad::corner_region, built from its components (an aggregate copy of x would not vectorise).
-      const Vec2 corner{x[p].x, x[p].y};
-      const quad::Corners region{corner, 0.5 * (corner + x[quad::next(p)]), Vec2{middle.x, middle.y},
-                                 0.5 * (x[quad::prev(p)] + corner)};
-      double volume = 0.0;
+      const quad::Corners region = corner_region_of(x, middle, p);
+      const double volume = corner_region_volume<G>(region);
       std::array<Vec2, 4> g;  // dV(S_p)/d(region corner j)
       if constexpr (G == GeometryKind::axisymmetric) {
-        volume = quad::axisymmetric_volume(region);
         g = quad::axisymmetric_volume_gradient(region);
       } else {
-        volume = quad::area(region);
         g = quad::area_gradient(region);
       }
       const double corner_density = subzone_mass[p][i] / volume;
