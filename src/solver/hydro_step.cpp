@@ -1,5 +1,6 @@
 #include "krug/solver/hydro_step.hpp"
 
+#include <stdexcept>
 #include <variant>
 
 #include "krug/solver/parallel.hpp"
@@ -49,8 +50,10 @@ ArtificialPower body_corner_forces(const Mesh& mesh, ZoneState& state, const Bod
       case ViscosityModel::edge: return run.template operator()<G, ViscosityModel::edge>();
       case ViscosityModel::scalar: return run.template operator()<G, ViscosityModel::scalar>();
       case ViscosityModel::tensor: return run.template operator()<G, ViscosityModel::tensor>();
-      case ViscosityModel::off:
-      case ViscosityModel::automatic: break;  // resolved by zone_force_params
+      case ViscosityModel::off: break;
+      case ViscosityModel::automatic:
+        throw std::logic_error("body_corner_forces: viscosity model \"auto\" unresolved (take the parameters from "
+                               "zone_force_params)");
     }
     return run.template operator()<G, ViscosityModel::off>();
   };
