@@ -14,8 +14,7 @@ double cfl_number(const Material& material, const Controls& controls) {
 bool some_body_takes(ViscosityModel model, const std::vector<Body>& bodies, const std::vector<Material>& materials,
                      const Controls& controls) {
   return std::any_of(bodies.begin(), bodies.end(), [&](const Body& body) {
-    const Material& material = materials[static_cast<std::size_t>(body.material)];
-    return body_viscosity(controls.viscosity, controls.hourglass, material.shear_modulus() != 0.0).model == model;
+    return zone_force_params(materials[static_cast<std::size_t>(body.material)], controls, 0.0).viscosity.model == model;
   });
 }
 

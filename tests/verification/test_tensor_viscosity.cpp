@@ -198,7 +198,7 @@ TEST_CASE("viscosity.model \"auto\": the tensor viscosity with the collapse pres
     Run r = run_to_end(scenario::parse_scenario(text, "two_bodies.json"));
     INFO(r.failure);
     REQUIRE(r.completed());
-    REQUIRE(r.simulation.cycle() == 100);  // the fixed step throughout
+    REQUIRE(r.simulation.cycle() == 100);  // end_time / max_time_step = 1e-4 / 1e-6: the fixed step throughout
     return r;
   };
   const Run both = run(two_bodies_scenario(true, true, "auto", 0.0));

@@ -63,20 +63,6 @@ template <GeometryKind G>
   viscous_power = power;
 }
 
-// Subzonal pressure forces (Caramana & Shashkov, J. Comput. Phys. 142, 1998), added to the batch's
-// forces. Corner p's region of the median mesh, S_p = (x_p, (x_p + x_p+1)/2, centre, (x_p-1 + x_p)/2),
-// keeps its initial mass m_p (zones.subzone_mass); its density m_p / V(S_p) differs from the zone's
-// when the zone distorts, and the difference dp_p = k c^2 (rho_p - rho) acts on the nodes as the
-// pressure of a region does: f_q += dp_p dV(S_p)/dx_q, with V the zone's volume measure (area, or
-// integral of r dA in axisymmetric geometry). These are corner forces like the others, so the
-// compatible update books their work in the zone's internal energy: momentum and energy stay exact.
-// For motion that keeps the regions' volume ratios (affine motion; in RZ also a uniform scaling about
-// the origin) every dp_p is zero.
-//
-// The corner-collapse pressure (settings.collapse) is the same force with a dead band: it adds
-// dp_p = k_c c^2 (rho_p - theta rho) where that is positive, theta the threshold (1.5 by default), and
-// nothing elsewhere. A corner region whose density reaches theta times its zone's is a corner folding
-// into the zone; the one-point hourglass control sees only the zone's mean mode and lets it fold.
 // Corner p's region of the median mesh (quad::corner_region), built from its components: an aggregate
 // copy of x would not vectorise.
 [[gnu::always_inline]] inline quad::Corners corner_region_of(const quad::Corners& x, Vec2 middle, int p) {
@@ -94,6 +80,20 @@ template <GeometryKind G>
   }
 }
 
+// Subzonal pressure forces (Caramana & Shashkov, J. Comput. Phys. 142, 1998), added to the batch's
+// forces. Corner p's region of the median mesh, S_p = (x_p, (x_p + x_p+1)/2, centre, (x_p-1 + x_p)/2),
+// keeps its initial mass m_p (zones.subzone_mass); its density m_p / V(S_p) differs from the zone's
+// when the zone distorts, and the difference dp_p = k c^2 (rho_p - rho) acts on the nodes as the
+// pressure of a region does: f_q += dp_p dV(S_p)/dx_q, with V the zone's volume measure (area, or
+// integral of r dA in axisymmetric geometry). These are corner forces like the others, so the
+// compatible update books their work in the zone's internal energy: momentum and energy stay exact.
+// For motion that keeps the regions' volume ratios (affine motion; in RZ also a uniform scaling about
+// the origin) every dp_p is zero.
+//
+// The corner-collapse pressure (settings.collapse) is the same force with a dead band: it adds
+// dp_p = k_c c^2 (rho_p - theta rho) where that is positive, theta the threshold (1.5 by default), and
+// nothing elsewhere. A corner region whose density reaches theta times its zone's is a corner folding
+// into the zone; the one-point hourglass control sees only the zone's mean mode and lets it fold.
 template <GeometryKind G>
 [[gnu::noinline]] inline void batch_subzonal_pressure(ZoneBatch& batch, int count, Index first, const ZoneFields& zones,
                                                          const HydroZoneFields& hydro, const ForceSettings settings) {
