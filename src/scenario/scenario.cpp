@@ -47,7 +47,7 @@ using detail::read_allowances;
 using detail::read_erosion;
 using detail::read_material;
 
-Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
+Controls read_controls(JsonObject controls, double end_time, GeometryKind geometry, long& max_zones) {
   Controls c;
   c.end_time = end_time;
   JsonObject* spec = &controls;
@@ -67,7 +67,7 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
   {
     JsonObject viscosity = spec->object_or_empty("viscosity");
     JsonObject* v = &viscosity;
-    const std::string model = v->choice("model", {"edge", "scalar", "tensor", "off", "auto"}, "edge");
+    const std::string model = v->choice("model", {"edge", "scalar", "tensor", "off", "auto"}, "auto");
     c.viscosity.model = model == "edge"     ? ViscosityModel::edge
                         : model == "scalar" ? ViscosityModel::scalar
                         : model == "tensor" ? ViscosityModel::tensor
@@ -99,11 +99,13 @@ Controls read_controls(JsonObject controls, double end_time, long& max_zones) {
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));
     c.hourglass.subzonal_at_shocks = h->flag("subzonal_at_shocks", c.hourglass.subzonal_at_shocks);
-    // The subzonal pressures act in bodies without strength, where "auto" gives the tensor viscosity.
-    if (c.hourglass.subzonal_at_shocks && c.viscosity.model != ViscosityModel::tensor &&
-        c.viscosity.model != ViscosityModel::automatic) {
-      h->fail("subzonal_at_shocks",
-              "false unless viscosity.model is \"tensor\" or \"auto\" (the tensor viscosity's switch marks the shocks)");
+    // The subzonal pressures act in bodies without strength, where "auto" gives the tensor viscosity in
+    // axisymmetric geometry.
+    const bool tensor_in_gases = c.viscosity.model == ViscosityModel::tensor ||
+                                 (c.viscosity.model == ViscosityModel::automatic && geometry == GeometryKind::axisymmetric);
+    if (c.hourglass.subzonal_at_shocks && !tensor_in_gases) {
+      h->fail("subzonal_at_shocks", "false unless viscosity.model is \"tensor\", or \"auto\" in axisymmetric geometry (the "
+                                    "tensor viscosity's switch marks the shocks)");
     }
     c.hourglass.collapse_pressure = h->optional_number("collapse_pressure", Range::between(0.0, 10.0));
     c.hourglass.collapse_threshold =
@@ -311,7 +313,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin,
   for (const Body& body : named_bodies) fracturing.push_back(fracture::enabled(scene.fracture[static_cast<std::size_t>(body.material)]));
   scene.contact = read_contact(top.object_or_empty("contact"), named_bodies, geometry, fracturing);
 
-  scene.controls = read_controls(top.object_or_empty("controls"), end_time, scene.max_zones);
+  scene.controls = read_controls(top.object_or_empty("controls"), end_time, geometry, scene.max_zones);
   if (read_limits.max_zones > 0) scene.max_zones = std::min(scene.max_zones, read_limits.max_zones);
   const bool solids = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
     return !std::holds_alternative<std::variant_alternative_t<0, Strength>>(m.strength);

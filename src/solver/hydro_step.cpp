@@ -12,13 +12,15 @@ double cfl_number(const Material& material, const Controls& controls) {
 }
 
 bool some_body_takes(ViscosityModel model, const std::vector<Body>& bodies, const std::vector<Material>& materials,
-                     const Controls& controls) {
+                     const Controls& controls, GeometryKind geometry) {
   return std::any_of(bodies.begin(), bodies.end(), [&](const Body& body) {
-    return zone_force_params(materials[static_cast<std::size_t>(body.material)], controls, 0.0).viscosity.model == model;
+    return zone_force_params(materials[static_cast<std::size_t>(body.material)], controls, geometry, 0.0).viscosity.model ==
+           model;
   });
 }
 
-ZoneForceParams zone_force_params(const Material& material, const Controls& controls, double previous_time_step) {
+ZoneForceParams zone_force_params(const Material& material, const Controls& controls, GeometryKind geometry,
+                                  double previous_time_step) {
   ZoneForceParams params;
   params.shock_slope = material.shock_slope();
   params.shear_modulus = material.shear_modulus();
@@ -26,7 +28,7 @@ ZoneForceParams zone_force_params(const Material& material, const Controls& cont
   params.bending_modulus = material.bending_modulus();
   params.viscosity = controls.viscosity;
   params.hourglass = controls.hourglass;
-  const BodyViscosity own = body_viscosity(controls.viscosity, controls.hourglass, material.shear_modulus() != 0.0);
+  const BodyViscosity own = body_viscosity(controls.viscosity, controls.hourglass, material.shear_modulus() != 0.0, geometry);
   params.viscosity.model = own.model;
   params.hourglass.collapse_pressure = own.collapse_pressure;
   params.axisymmetric_form = controls.axisymmetric_form;

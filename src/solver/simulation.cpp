@@ -65,7 +65,7 @@ void Simulation::initialise() {
   build_edge_continuations(state_.mesh);
   node_corners_ = node_corners(state_.mesh);
   share_edge_limiters();
-  if (some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_)) {
+  if (some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_, geometry_)) {
     damping_rows_.assign(4 * static_cast<std::size_t>(zones.size()), 0.0);  // present: the step reads its bound
     damping_scale_.assign(nodes.size(), 0.0);
   }
@@ -151,8 +151,8 @@ void Simulation::restore(SimulationState s) {
 }
 
 void Simulation::share_edge_limiters() {
-  const bool edge_limiters = some_body_takes(ViscosityModel::edge, bodies_, materials_, controls_) ||
-                             some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_);
+  const bool edge_limiters = some_body_takes(ViscosityModel::edge, bodies_, materials_, controls_, geometry_) ||
+                             some_body_takes(ViscosityModel::tensor, bodies_, materials_, controls_, geometry_);
   if (!edge_limiters || !controls_.viscosity.limiter) return;
   mirrored_edges_ = mirrored_edge_slots(state_.mesh);
   edge_limiters_.assign(mirrored_edges_.size(), 0.0);
@@ -177,7 +177,7 @@ void Simulation::compute_forces() {
   artificial_power_.resize(bodies_.size());
   for (const Body& body : bodies_) {
     const Material& material = materials_[static_cast<std::size_t>(body.material)];
-    const ZoneForceParams params = zone_force_params(material, controls_, state_.time_step_previous);
+    const ZoneForceParams params = zone_force_params(material, controls_, geometry_, state_.time_step_previous);
     const SharedEdgeLimiters limiters{mirrored_edges_.empty() ? nullptr : mirrored_edges_.data(),
                                       edge_limiters_.empty() ? nullptr : edge_limiters_.data()};
     artificial_power_[static_cast<std::size_t>(&body - bodies_.data())] =

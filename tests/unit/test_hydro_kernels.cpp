@@ -572,25 +572,35 @@ TEST_CASE("hydro kernels: the corner-collapse pressure acts past its threshold o
   }
 }
 
-// ViscosityModel::automatic resolves by the body's strength (parameters.hpp, body_viscosity); a named
-// model applies to every body, and a collapse pressure given overrides the automatic one.
+// ViscosityModel::automatic, a run's default (Controls), resolves by the body's strength and the geometry
+// (parameters.hpp, body_viscosity): the tensor viscosity with the corner-collapse pressure only for an
+// axisymmetric body without strength; a named model applies to every body, and a collapse pressure given
+// overrides the automatic one.
 TEST_CASE("hydro parameters: each body's viscosity model and corner-collapse pressure", "[hydro][viscosity]") {
+  constexpr GeometryKind rz = GeometryKind::axisymmetric, xy = GeometryKind::planar;
   ViscosityParams viscosity;
   HourglassParams hourglass;
   viscosity.model = ViscosityModel::automatic;
-  CHECK(body_viscosity(viscosity, hourglass, true).model == ViscosityModel::edge);
-  CHECK(body_viscosity(viscosity, hourglass, true).collapse_pressure == 0.0);
-  CHECK(body_viscosity(viscosity, hourglass, false).model == ViscosityModel::tensor);
-  CHECK(body_viscosity(viscosity, hourglass, false).collapse_pressure == automatic_collapse_pressure);
+  for (const GeometryKind g : {rz, xy}) {
+    CHECK(body_viscosity(viscosity, hourglass, true, g).model == ViscosityModel::edge);
+    CHECK(body_viscosity(viscosity, hourglass, true, g).collapse_pressure == 0.0);
+  }
+  CHECK(body_viscosity(viscosity, hourglass, false, rz).model == ViscosityModel::tensor);
+  CHECK(body_viscosity(viscosity, hourglass, false, rz).collapse_pressure == automatic_collapse_pressure);
+  CHECK(body_viscosity(viscosity, hourglass, false, xy).model == ViscosityModel::edge);
+  CHECK(body_viscosity(viscosity, hourglass, false, xy).collapse_pressure == 0.0);
   hourglass.collapse_pressure = 0.25;
-  CHECK(body_viscosity(viscosity, hourglass, false).collapse_pressure == 0.25);
-  CHECK(body_viscosity(viscosity, hourglass, true).collapse_pressure == 0.25);
+  CHECK(body_viscosity(viscosity, hourglass, false, rz).collapse_pressure == 0.25);
+  CHECK(body_viscosity(viscosity, hourglass, false, xy).collapse_pressure == 0.25);
+  CHECK(body_viscosity(viscosity, hourglass, true, rz).collapse_pressure == 0.25);
   hourglass.collapse_pressure.reset();
   for (const ViscosityModel named : {ViscosityModel::edge, ViscosityModel::scalar, ViscosityModel::tensor, ViscosityModel::off}) {
     viscosity.model = named;
     for (const bool strength : {true, false}) {
-      CHECK(body_viscosity(viscosity, hourglass, strength).model == named);
-      CHECK(body_viscosity(viscosity, hourglass, strength).collapse_pressure == 0.0);
+      for (const GeometryKind g : {rz, xy}) {
+        CHECK(body_viscosity(viscosity, hourglass, strength, g).model == named);
+        CHECK(body_viscosity(viscosity, hourglass, strength, g).collapse_pressure == 0.0);
+      }
     }
   }
 }

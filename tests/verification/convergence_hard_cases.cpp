@@ -27,6 +27,7 @@ int scaled(int zones, int smallest) {
 }
 
 void cure(scenario::Scenario& scenario) {
+  scenario.setup.controls.viscosity.model = ViscosityModel::edge;  // the default gives an RZ gas the tensor viscosity
   scenario.setup.controls.hourglass.subzonal_pressure = 0.5;
   scenario.setup.controls.viscosity.heat_conduction = 2.0;
 }

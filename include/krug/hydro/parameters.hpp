@@ -5,19 +5,23 @@
 // choices that depend on whether the body has strength.
 #include <optional>
 
+#include "krug/core/geometry_kind.hpp"
+
 namespace krug {
 
 enum class ViscosityModel {
-  edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter (default)
+  edge,    // Caramana, Shashkov & Whalen (1998) edge viscosity with a limiter
   scalar,  // Wilkins' zone-centred q added to the pressure
   tensor,  // Campbell & Shashkov (2001) corner (tensor) viscosity with a limiter
   off,
-  // By body: the edge viscosity in bodies with strength; in bodies without strength the tensor
-  // viscosity with the corner-collapse pressure (HourglassParams::collapse_pressure, 1 unless given),
-  // which keeps the converging gas flows of docs/verification.md F7 from folding at the axis.
+  // By body (a run's default, Controls): in axisymmetric bodies without strength the tensor viscosity with the
+  // corner-collapse pressure (HourglassParams::collapse_pressure, 1 unless given), which keeps the
+  // converging gas flows of docs/verification.md F7 from folding at the axis; in every other body the
+  // edge viscosity (planar gas flows and solids, which it passes at a smaller cost per cycle).
   automatic
 };
 
+// A kernel takes a resolved model (zone_force_params); a run's controls default to `automatic` (Controls).
 struct ViscosityParams {
   ViscosityModel model = ViscosityModel::edge;
   double quadratic = 1.0;  // c_q, multiplies the EOS shock slope ((gamma+1)/4 for a gas)
@@ -76,9 +80,11 @@ struct BodyViscosity {
 };
 
 inline BodyViscosity body_viscosity(const ViscosityParams& viscosity, const HourglassParams& hourglass,
-                                    bool has_strength) {
+                                    bool has_strength, GeometryKind geometry) {
   if (viscosity.model != ViscosityModel::automatic) return {viscosity.model, hourglass.collapse_pressure.value_or(0.0)};
-  if (has_strength) return {ViscosityModel::edge, hourglass.collapse_pressure.value_or(0.0)};
+  if (has_strength || geometry != GeometryKind::axisymmetric) {
+    return {ViscosityModel::edge, hourglass.collapse_pressure.value_or(0.0)};
+  }
   return {ViscosityModel::tensor, hourglass.collapse_pressure.value_or(automatic_collapse_pressure)};
 }
 

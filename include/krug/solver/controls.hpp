@@ -28,7 +28,7 @@ struct Controls {
   double time_step_floor = 0.0;          // s; 0 = 1e-9 of the first step. Below it the run stops.
   long max_cycles = 100'000'000;
   int threads = 1;                       // threads for the zone and node loops; the results do not depend on it
-  ViscosityParams viscosity;
+  ViscosityParams viscosity{.model = ViscosityModel::automatic};  // the model resolved per body (body_viscosity)
   HourglassParams hourglass;
   AxisymmetricForm axisymmetric_form = AxisymmetricForm::control_volume;
   FractureControls fracture;

@@ -34,11 +34,12 @@ double cfl_number(const Material& material, const Controls& controls);
 
 // Whether some body of `bodies` takes this viscosity model (body_viscosity).
 bool some_body_takes(ViscosityModel model, const std::vector<Body>& bodies, const std::vector<Material>& materials,
-                     const Controls& controls);
+                     const Controls& controls, GeometryKind geometry);
 
 // The force kernel's parameters for a body of this material, its viscosity model and corner-collapse
-// pressure resolved (body_viscosity); `previous_time_step` is dt^{n-1/2}.
-ZoneForceParams zone_force_params(const Material& material, const Controls& controls, double previous_time_step);
+// pressure resolved (body_viscosity) for a body of this geometry; `previous_time_step` is dt^{n-1/2}.
+ZoneForceParams zone_force_params(const Material& material, const Controls& controls, GeometryKind geometry,
+                                  double previous_time_step);
 
 // Step 1 on the body's zones (compute_corner_forces): reads the mesh's positions, velocities at
 // t^{n-1/2} and zones, and the zones' pressure, sound speed, stress and damage; writes their corner
