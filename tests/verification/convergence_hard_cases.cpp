@@ -4,7 +4,8 @@
 // spherical Sedov on RZ rectangles of 100 x 100 and 200 x 200 zones, and the spherical Noh on polar
 // meshes refined beyond the verification mesh (200 x 60 and 200 x 80), each judged by the criteria of
 // its default-resolution test (test_noh.cpp, test_sedov.cpp). KRUG_CONVERGENCE_SCALE scales the meshes
-// (CI runs 0.25), never below the default meshes (50 x 50; the polar 100 x 30 and 100 x 40).
+// (CI runs 0.25), never below the default meshes (50 x 50; the polar 100 x 30 and 100 x 40). The polar
+// Noh at 200 x 60 is also run with default controls, which pass it.
 // Full scale takes a few minutes, most of it the two polar meshes.
 #include <catch2/catch.hpp>
 
@@ -99,6 +100,19 @@ TEST_CASE("Hard cases, finer: Noh spherical on RZ polar meshes of 200 x 60 and 2
     const std::string label = "Noh, spherical (RZ polar " + mesh_name(radial, angular) + ", subzonal 0.5 + heat 2)";
     noh::check_noh(run_to_end(scenario), {label.c_str(), 3, Coordinate::radius});
   }
+}
+
+// Default controls (the tensor viscosity with the corner-collapse pressure in this gas; docs/verification.md
+// F7) on the polar mesh refined to 200 x 60, where the edge viscosity stops at t = 0.168. Measured at full
+// scale: 113 202 cycles, shock 0.2014 in every angular bin, plateau mean -2.8 %, worst zone 3.7 %, energy
+// 7e-16. At 200 x 80 the default run does not finish (a known failure, F7): the centre's triangles next to
+// the axis are pressed onto it and the damping bound of their zones' step falls below 1e-7 s by t = 0.013.
+TEST_CASE("Hard cases, finer: Noh spherical on the RZ polar mesh of 200 x 60 with default controls",
+          "[convergence][noh]") {
+  const int radial = scaled(200, 100), angular = scaled(60, 30);
+  scenario::Scenario scenario = load_example("noh_spherical.json", {zones(40, angular), zones(100, radial)});
+  const std::string label = "Noh, spherical (RZ polar " + mesh_name(radial, angular) + ", default controls)";
+  noh::check_noh(run_to_end(scenario), {label.c_str(), 3, Coordinate::radius});
 }
 
 // The tensor viscosity (controls.viscosity.model = "tensor", otherwise default controls) on the finer

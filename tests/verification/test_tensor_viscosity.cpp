@@ -113,19 +113,6 @@ TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh spherical on 
   noh::check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, tensor q, subzonal 2 at shocks)", 3, Coordinate::radius});
 }
 
-// The tensor viscosity with the corner-collapse pressure (`hourglass.collapse_pressure` 1, its dead band
-// at 1.5 times the zone's density; docs/verification.md F7): the pressure holds open the axis row's
-// zone that the tensor viscosity alone lets collapse onto the axis, and acts nowhere in smooth flow.
-// Judged by the edge viscosity's criteria on this mesh (test_noh.cpp), within three times its cycles.
-TEST_CASE("Tensor viscosity with the corner-collapse pressure: Noh spherical on an RZ equal-angle polar mesh",
-          "[noh][axisymmetric][tensor][collapse]") {
-  scenario::Scenario scenario = load_example("noh_spherical.json");
-  scenario.setup.controls.viscosity.model = ViscosityModel::tensor;
-  scenario.setup.controls.hourglass.collapse_pressure = 1.0;
-  scenario.setup.controls.max_cycles = 3 * 9'724;
-  noh::check_noh(run_to_end(scenario), {"Noh, spherical (RZ polar, tensor q, collapse pressure 1)", 3, Coordinate::radius});
-}
-
 TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh and Sedov spherical on a rectangular RZ mesh",
           "[noh][sedov][axisymmetric][tensor][subzonal]") {
   const long scalar_q_cycles = rz_rectangle::noh_scalar_q_cycles(50);
