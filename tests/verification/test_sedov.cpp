@@ -98,7 +98,8 @@ TEST_CASE("Sedov spherical on an RZ polar quarter, tensor viscosity with subzona
                                      1.0, spherical_energy});
 }
 
-// Known failure F4 (docs/verification.md): symmetric, but gains 5.7 % energy and its shock is 3.5 zones out.
+// Known failure F4 (docs/verification.md): symmetric, but gains 7.1 % energy and its shock is 4.2 zones out
+// (default controls).
 TEST_CASE("Sedov spherical on an RZ polar quarter, area-weighted form", "[sedov][axisymmetric][!mayfail]") {
   scenario::Scenario scenario = load_example("sedov_spherical.json");
   scenario.setup.controls.axisymmetric_form = AxisymmetricForm::area_weighted;
