@@ -2,7 +2,7 @@
 // Numerical parameters of the hydrodynamic step (artificial viscosity, hourglass control, the
 // axisymmetric form of the corner forces), with defaults. The kernels in this module read them;
 // the solver's Controls carry one copy per run, and each body's copy (body_viscosity) resolves the
-// choices that depend on whether the body has strength.
+// choices that depend on whether the body has strength and on the geometry.
 #include <optional>
 
 #include "krug/core/geometry_kind.hpp"
