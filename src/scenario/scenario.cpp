@@ -99,10 +99,10 @@ Controls read_controls(JsonObject controls, double end_time, GeometryKind geomet
     c.hourglass.subzonal_pressure =
         h->number("subzonal_pressure", c.hourglass.subzonal_pressure, Range::between(0.0, 2.0));
     c.hourglass.subzonal_at_shocks = h->flag("subzonal_at_shocks", c.hourglass.subzonal_at_shocks);
-    // The subzonal pressures act in bodies without strength, where "auto" gives the tensor viscosity in
-    // axisymmetric geometry.
-    const bool tensor_in_gases = c.viscosity.model == ViscosityModel::tensor ||
-                                 (c.viscosity.model == ViscosityModel::automatic && geometry == GeometryKind::axisymmetric);
+    // The subzonal pressures act in bodies without strength: the flag needs the model those take to be
+    // the tensor viscosity.
+    const bool tensor_in_gases =
+        body_viscosity(c.viscosity, c.hourglass, false, geometry).model == ViscosityModel::tensor;
     if (c.hourglass.subzonal_at_shocks && !tensor_in_gases) {
       h->fail("subzonal_at_shocks", "false unless viscosity.model is \"tensor\", or \"auto\" in axisymmetric geometry (the "
                                     "tensor viscosity's switch marks the shocks)");

@@ -4,6 +4,7 @@
 // convergence_hard_cases.cpp.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -132,27 +133,21 @@ TEST_CASE("Tensor viscosity with subzonal pressures at shocks: Noh and Sedov sph
 // whole run: an independent computation of the same state, so the check is bit for bit.
 namespace {
 
-std::string two_bodies_scenario(const std::string& geometry, bool gas, bool solid, const std::string& viscosity_model,
+std::string two_bodies_scenario(GeometryKind geometry, bool gas, bool solid, const std::string& viscosity_model,
                                 double collapse) {
-  // Off the axis (r from 0.5), so that the same bodies serve both geometries.
+  // Off the axis (r from 0.5), so that the same bodies serve both geometries; X and Y are the axes' names.
   const std::string gas_body = R"json({ "name": "gas", "material": "gas",
-      "mesh": { "type": "rectangle", "x": { "from": 0, "to": 1, "zones": 12 }, "y": { "from": 0.5, "to": 1.5, "zones": 12 } },
-      "initial": { "velocity": ["-1000*x*(1+0.3*y)", "-800*(y-0.5)"], "specific_internal_energy": 1e6 },
-      "boundary": { "x_min": "slip", "y_min": "slip" } })json";
+      "mesh": { "type": "rectangle", "X": { "from": 0, "to": 1, "zones": 12 }, "Y": { "from": 0.5, "to": 1.5, "zones": 12 } },
+      "initial": { "velocity": ["-1000*X*(1+0.3*Y)", "-800*(Y-0.5)"], "specific_internal_energy": 1e6 },
+      "boundary": { "X_min": "slip", "Y_min": "slip" } })json";
   const std::string solid_body = R"json({ "name": "block", "material": "copper",
-      "mesh": { "type": "rectangle", "x": { "from": 3, "to": 4, "zones": 10 }, "y": { "from": 0.5, "to": 1.5, "zones": 10 } },
-      "initial": { "velocity": ["-300*(x-3)*(1+y)", "0"] },
-      "boundary": { "x_min": "slip", "y_min": "slip" } })json";
+      "mesh": { "type": "rectangle", "X": { "from": 3, "to": 4, "zones": 10 }, "Y": { "from": 0.5, "to": 1.5, "zones": 10 } },
+      "initial": { "velocity": ["-300*(X-3)*(1+Y)", "0"] },
+      "boundary": { "X_min": "slip", "Y_min": "slip" } })json";
   std::string bodies = gas ? gas_body : "";
   if (solid) bodies += (gas ? ", " : "") + solid_body;
-  if (geometry == "axisymmetric") {  // the axes (z, r) in the meshes, expressions and boundaries
-    for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"x\"", "\"z\""}, {"\"y\"", "\"r\""},
-                                   {"x_min", "z_min"}, {"y_min", "r_min"}, {"*x", "*z"}, {"(x", "(z"}, {"*y", "*r"},
-                                   {"(y", "(r"}, {"+y", "+r"}}) {
-      for (std::size_t at = bodies.find(from); at != std::string::npos; at = bodies.find(from, at + to.size())) {
-        bodies.replace(at, from.size(), to);
-      }
-    }
+  for (const auto& [from, axis] : {std::pair{'X', 0}, std::pair{'Y', 1}}) {
+    std::replace(bodies.begin(), bodies.end(), from, axis_name(geometry, axis).front());
   }
   const std::string hourglass =
       collapse > 0.0 ? fmt::format(R"(, "hourglass": {{ "collapse_pressure": {} }})", collapse) : std::string();
@@ -162,7 +157,7 @@ std::string two_bodies_scenario(const std::string& geometry, bool gas, bool soli
                    "copper": {{ "base": "ofhc-copper" }} }},
     "bodies": [ {} ],
     "controls": {{ "initial_time_step": 1e-6, "max_time_step": 1e-6{}{} }} }})",
-                     geometry, bodies, model, hourglass);
+                     geometry == GeometryKind::axisymmetric ? "axisymmetric" : "planar", bodies, model, hourglass);
 }
 
 std::vector<double> node_positions(const Simulation& simulation, const Body& body) {
@@ -186,28 +181,18 @@ TEST_CASE("viscosity.model \"auto\": the tensor viscosity with the collapse pres
     REQUIRE(r.simulation.cycle() == 100);  // end_time / max_time_step = 1e-4 / 1e-6: the fixed step throughout
     return r;
   };
-  const auto gas_of = [](const Run& r) { return node_positions(r.simulation, r.simulation.bodies()[0]); };
-  SECTION("axisymmetric") {
-    const Run both = run(two_bodies_scenario("axisymmetric", true, true, "auto", 0.0));
-    const Run by_default = run(two_bodies_scenario("axisymmetric", true, true, "", 0.0));
-    const Run gas_tensor = run(two_bodies_scenario("axisymmetric", true, false, "tensor", 1.0));
-    const Run gas_edge = run(two_bodies_scenario("axisymmetric", true, false, "edge", 0.0));
-    const Run solid_edge = run(two_bodies_scenario("axisymmetric", false, true, "edge", 0.0));
-    const std::vector<Body>& bodies = both.simulation.bodies();
-    CHECK(node_positions(both.simulation, bodies[0]) == gas_of(gas_tensor));
-    CHECK(node_positions(both.simulation, bodies[1]) == gas_of(solid_edge));
-    CHECK(gas_of(by_default) == gas_of(both));
+  const auto first_body = [](const Run& r) { return node_positions(r.simulation, r.simulation.bodies()[0]); };
+  for (const GeometryKind g : {GeometryKind::axisymmetric, GeometryKind::planar}) {
+    INFO((g == GeometryKind::axisymmetric ? "axisymmetric" : "planar"));
+    const Run both = run(two_bodies_scenario(g, true, true, "auto", 0.0));
+    const Run by_default = run(two_bodies_scenario(g, true, true, "", 0.0));
+    const Run gas_tensor = run(two_bodies_scenario(g, true, false, "tensor", 1.0));
+    const Run gas_edge = run(two_bodies_scenario(g, true, false, "edge", 0.0));
+    const Run solid_edge = run(two_bodies_scenario(g, false, true, "edge", 0.0));
+    CHECK(first_body(both) == first_body(g == GeometryKind::axisymmetric ? gas_tensor : gas_edge));
+    CHECK(node_positions(both.simulation, both.simulation.bodies()[1]) == first_body(solid_edge));  // the solid
+    CHECK(first_body(by_default) == first_body(both));
     // The models differ on this flow (else the first check would prove nothing).
-    CHECK(gas_of(gas_tensor) != gas_of(gas_edge));
-  }
-  SECTION("planar") {
-    const Run both = run(two_bodies_scenario("planar", true, true, "auto", 0.0));
-    const Run gas_tensor = run(two_bodies_scenario("planar", true, false, "tensor", 1.0));
-    const Run gas_edge = run(two_bodies_scenario("planar", true, false, "edge", 0.0));
-    const Run solid_edge = run(two_bodies_scenario("planar", false, true, "edge", 0.0));
-    const std::vector<Body>& bodies = both.simulation.bodies();
-    CHECK(node_positions(both.simulation, bodies[0]) == gas_of(gas_edge));
-    CHECK(node_positions(both.simulation, bodies[1]) == gas_of(solid_edge));
-    CHECK(gas_of(gas_tensor) != gas_of(gas_edge));
+    CHECK(first_body(gas_tensor) != first_body(gas_edge));
   }
 }
