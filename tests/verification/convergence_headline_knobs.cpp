@@ -16,9 +16,10 @@
 // backwards are reported, not asserted: they stay above the 5 % and 1 % a reviewer asks
 // (docs/validation.md, "Lead erosion").
 //
-// The full study runs the 10 zones per mm scenarios of examples/paper/ (2 x 3 x 8 runs of about 20 s
-// of one core); with KRUG_CONVERGENCE_SCALE < 1 (CI) the 5 zones per mm ones of examples/paper/coarse/
-// (2 x 3 x 8 runs of about 4.5 s).
+// The full study runs the 10 zones per mm scenarios of examples/paper/ (2 x 3 x 8 runs of 15 to 70 s of
+// one core, 40 s on average: docs/validation/headline_knobs_z10.csv, wall_seconds); with
+// KRUG_CONVERGENCE_SCALE < 1 (CI) the 5 zones per mm ones of examples/paper/coarse/ (2 x 3 x 8 runs of
+// about 4.5 s).
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
